@@ -1,0 +1,175 @@
+// splat materials: the material library compiled into the binary.
+//   splat materials              table of the library (SI units, stresses in
+//                                MPa, moduli in GPa), then where each
+//                                material's numbers come from
+//   splat materials --json       the array of every library document
+//   splat materials --show NAME  one document as written, a library name or a
+//                                JSON file, checked first: an invalid one
+//                                prints its violations to stderr, exit 2
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "solver/input/embedded.hpp"
+#include "solver/input/material_io.hpp"
+
+namespace splat::app {
+
+namespace {
+
+struct MaterialsOptions {
+  bool json = false;
+  std::string show;
+};
+
+std::string fixed(double x, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, x);
+  return buf;
+}
+
+const char* initiation_text(DamageInitiation d) {
+  switch (d) {
+    case DamageInitiation::none:
+      return "none";
+    case DamageInitiation::johnson_cook:
+      return "johnson-cook";
+    case DamageInitiation::shear:
+      return "shear";
+  }
+  return "none";
+}
+
+// Prints `text` from column `indent` on, broken between words before `width`.
+void print_wrapped(const std::string& first, const std::string& text, std::size_t indent,
+                   std::size_t width) {
+  std::string line = first;
+  line.resize(std::max(line.size(), indent), ' ');
+  std::size_t start = 0;
+  bool line_has_word = false;
+  while (start < text.size()) {
+    std::size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (line_has_word && line.size() + 1 + word.size() > width) {
+      std::printf("%s\n", line.c_str());
+      line.assign(indent, ' ');
+      line_has_word = false;
+    }
+    if (line_has_word) line += ' ';
+    line += word;
+    line_has_word = true;
+    start = end + 1;
+  }
+  std::printf("%s\n", line.c_str());
+}
+
+int print_table() {
+  using Row = std::vector<std::string>;
+  std::vector<Row> rows = {
+      {"name", "rho", "E", "nu", "A", "B", "n", "C", "m", "T_melt", "c_p", "damage"},
+      {"", "kg/m^3", "GPa", "-", "MPa", "MPa", "-", "-", "-", "K", "J/(kg K)", "initiation"},
+  };
+  std::vector<Material> materials;
+  for (const std::string& name : material_names()) {
+    const Material m = load_material(name);
+    const JohnsonCookParams& j = m.strength;
+    rows.push_back({m.name, fixed(m.density, 0), fixed(m.elastic.E / 1e9, 1),
+                    fixed(m.elastic.nu, 3), fixed(j.A / 1e6, 1), fixed(j.B / 1e6, 1), fixed(j.n, 3),
+                    fixed(j.C, 4), fixed(j.m, 3), fixed(j.T_melt, 0), fixed(m.thermal.c_p, 1),
+                    initiation_text(m.damage.initiation)});
+    materials.push_back(m);
+  }
+  const std::size_t columns = rows[0].size();
+  std::vector<std::size_t> width(columns, 0);
+  for (const Row& r : rows) {
+    for (std::size_t c = 0; c < columns; ++c) width[c] = std::max(width[c], r[c].size());
+  }
+  for (const Row& r : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < columns; ++c) {
+      const std::string pad(width[c] - r[c].size(), ' ');
+      const bool left = c == 0 || c + 1 == columns;  // names left, numbers right
+      if (c > 0) line += "  ";
+      line += left ? r[c] + pad : pad + r[c];
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    std::printf("%s\n", line.c_str());
+  }
+  std::printf("\nsources:\n");
+  for (const Material& m : materials) print_wrapped("  " + m.name + ":", m.source, 20, 100);
+  return 0;
+}
+
+// Library documents keep the field order of their files.
+int print_all_documents() {
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const std::string& name : material_names()) {
+    for (const EmbeddedText& e : embedded_materials()) {
+      if (e.name == name) all.push_back(nlohmann::ordered_json::parse(e.text));
+    }
+  }
+  std::printf("%s\n", all.dump(2).c_str());
+  return 0;
+}
+
+// The text of a library document or of a file, as written.
+std::string document_text(const std::string& name_or_path) {
+  for (const EmbeddedText& e : embedded_materials()) {
+    if (e.name == name_or_path) return std::string(e.text);
+  }
+  std::ifstream in(name_or_path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+int show_document(const std::string& name_or_path) {
+  std::vector<SchemaViolation> problems;
+  try {
+    problems = material_violations(material_document(name_or_path));
+  } catch (const InputError& e) {
+    problems = e.violations();
+  }
+  if (problems.size() == 1 && problems[0].pointer.empty()) {  // not found, not JSON
+    std::fprintf(stderr, "splat materials: %s\n", problems[0].message.c_str());
+    return 2;
+  }
+  if (!problems.empty()) {
+    std::fprintf(stderr, "splat materials: '%s' is not a valid material:\n", name_or_path.c_str());
+    for (const SchemaViolation& v : problems) {
+      std::fprintf(stderr, "  %s\n", to_string(v).c_str());
+    }
+    return 2;
+  }
+  std::string text = document_text(name_or_path);
+  if (text.empty() || text.back() != '\n') text += '\n';
+  std::fputs(text.c_str(), stdout);
+  return 0;
+}
+
+}  // namespace
+
+void register_materials(CLI::App& app, CommandTable& commands) {
+  auto opts = std::make_shared<MaterialsOptions>();
+  CLI::App* sub =
+      app.add_subcommand("materials", "List the material library, or print one material document");
+  CLI::Option* json_flag =
+      sub->add_flag("--json", opts->json, "Print every library document as one JSON array");
+  sub->add_option("--show", opts->show,
+                  "Print one material document (library name or JSON file) after checking it")
+      ->excludes(json_flag);
+  commands.emplace_back(sub, [opts]() {
+    if (!opts->show.empty()) return show_document(opts->show);
+    if (opts->json) return print_all_documents();
+    return print_table();
+  });
+}
+
+}  // namespace splat::app

@@ -1,0 +1,23 @@
+// Registration of the subcommands of `splat`. Each command file defines one
+// register_* function that adds its CLI11 subcommand and the action to run
+// when it was chosen; the action returns the process exit code.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <utility>
+#include <vector>
+
+namespace splat::app {
+
+using CommandTable = std::vector<std::pair<CLI::App*, std::function<int()>>>;
+
+void register_materials(CLI::App& app, CommandTable& commands);
+void register_mat_point(CLI::App& app, CommandTable& commands);
+
+inline void register_all(CLI::App& app, CommandTable& commands) {
+  register_materials(app, commands);
+  register_mat_point(app, commands);
+}
+
+}  // namespace splat::app

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Breaks the physics on purpose, one mutation at a time, and checks that the
+# named verification tests then FAIL (and pass again once restored). This is
+# how we know each verification test can fail. Not part of CI (it rebuilds
+# once per mutation); run it after changing a kernel or a test:
+#   scripts/mutation_check.sh
+set -uo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="$here/build-mutation"
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSPLAT_BUILD_BENCHMARKS=OFF >/dev/null
+
+# file | literal text | replacement | gtest filter that must fail
+mutations=(
+  "solver/material/johnson_cook.hpp|1.0 + jc.C * std::log(|1.0 + 0.5 * jc.C * std::log(|uniaxial_johnson_cook.*"
+  "solver/material/johnson_cook.hpp|1.0 - std::pow(t_star, jc.m)|1.0 - std::pow(t_star, 1.1 * jc.m)|uniaxial_johnson_cook.*"
+  "solver/material/johnson_cook.hpp|jc.A + jc.B * std::pow(eps_p, jc.n)|jc.A + 1.02 * jc.B * std::pow(eps_p, jc.n)|uniaxial_johnson_cook.*:simple_shear.*"
+  "solver/material/point_update.cpp|s *= (q_trial > 0.0) ? std::max(q_trial - 3.0 * G_d * dp|s *= (q_trial > 0.0) ? std::max(q_trial - 2.9 * G_d * dp|uniaxial_johnson_cook.*"
+  "solver/material/point_update.cpp|st.T += mc.chi * w * J_new|st.T += w * J_new|adiabatic_heating.*"
+  "solver/material/point_update.cpp|eos_split(m.eos, mc.K,|eos_split(m.eos, 1.01 * mc.K,|elastic_uniaxial_strain.*"
+  "solver/material/point_update.cpp|Mat3 s = st.s + 2.0 * G_d|Mat3 s = st.s + 2.02 * G_d|elastic_uniaxial_strain.*:uniaxial_johnson_cook.elastic*"
+  "solver/material/point_update.cpp|D = span > 0.0 ? D + dp_after_init / span|D = span > 0.0 ? D + 1.1 * dp_after_init / span|jc_ductile_damage.*"
+  "solver/material/damage.hpp|d.D2 * std::exp(d.D3 * triaxiality)|d.D2 * std::exp(-d.D3 * triaxiality)|jc_ductile_damage.*"
+  "solver/material/damage.hpp|return std::max(lo + (hi - lo) * w|return std::max(hi + (lo - hi) * w|shear_failure_damage.*"
+  "solver/material/damage.hpp|(k_s * p + q) / tau_max|(k_s * p + q) / (1.05 * tau_max)|shear_failure_damage.*"
+  "solver/material/elasticity.hpp|(Mat3::Identity() - half).inverse() * (Mat3::Identity() + half)|(Mat3::Identity() + half).inverse() * (Mat3::Identity() - half)|simple_shear.*"
+)
+
+status=0
+for entry in "${mutations[@]}"; do
+  IFS='|' read -r file from to filter <<<"$entry"
+  path="$here/$file"
+  cp "$path" "$path.orig"
+  python3 - "$path" "$from" "$to" <<'PY'
+import sys
+p, a, b = sys.argv[1:4]
+s = open(p).read()
+if a not in s:
+    sys.exit(f"mutation text not found in {p}: {a}")
+open(p, "w").write(s.replace(a, b, 1))
+PY
+  if [ $? -ne 0 ]; then mv "$path.orig" "$path"; status=1; continue; fi
+  if cmake --build "$build" --target splat_verification_tests -j "$(nproc)" >/dev/null 2>&1 &&
+     ! "$build/tests/splat_verification_tests" --gtest_filter="$filter" >/dev/null 2>&1; then
+    echo "caught   : $file: '$from' -> '$to' ($filter fails)"
+  else
+    echo "MISSED   : $file: '$from' -> '$to' ($filter still passes or did not build)"
+    status=1
+  fi
+  mv "$path.orig" "$path"
+  touch "$path"
+done
+cmake --build "$build" --target splat_verification_tests -j "$(nproc)" >/dev/null 2>&1
+"$build/tests/splat_verification_tests" >/dev/null 2>&1 || { echo "restored tree FAILS"; status=1; }
+exit $status

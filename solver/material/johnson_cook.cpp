@@ -1,0 +1,99 @@
+#include "solver/material/johnson_cook.hpp"
+
+#include <limits>
+
+namespace splat {
+
+FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwitches& sw,
+                                    double eps_p, double eps_dot_p, double T) {
+  const double theta = jc_thermal_factor(jc, sw.thermal_softening, T);
+  const double rate = jc_rate_factor(jc, sw.rate_hardening, eps_dot_p);
+  double hard = jc.A;
+  double d_hard = 0.0;
+  if (eps_p > 0.0) {
+    const double pw = std::pow(eps_p, jc.n);
+    hard += jc.B * pw;
+    d_hard = jc.B * jc.n * pw / eps_p;
+  } else if (jc.n < 1.0 && jc.B > 0.0) {
+    d_hard = std::numeric_limits<double>::infinity();  // eps_p^n has a vertical tangent at 0
+  } else if (jc.n == 1.0) {
+    d_hard = jc.B;
+  }
+  double d_rate = 0.0;
+  if (sw.rate_hardening && eps_dot_p > jc.eps_dot_0) d_rate = jc.C / eps_dot_p;
+  return {hard * rate * theta, d_hard * rate * theta, hard * d_rate * theta};
+}
+
+ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_hardening,
+                                    double q_trial, double G_d, double eps_p, double dt,
+                                    double scale, double hard0, double dp_guess) {
+  constexpr int max_iterations = 200;
+  const double three_g = 3.0 * G_d;
+  ReturnMapResult r;
+  if (scale <= 0.0) {  // molten or fully damaged: no strength, return to the axis
+    r.delta_eps_p = q_trial / three_g;
+    r.iterations = 0;
+    return r;
+  }
+  const bool rate_on = rate_hardening && jc.C > 0.0;
+  const double inv_ref = 1.0 / (jc.eps_dot_0 * dt);  // dp -> eps_dot / eps_dot_0
+  double lo = 0.0;
+  double hi = q_trial / three_g;
+  // Converged when the residual is a tiny fraction of the trial stress or the
+  // bracket has shrunk to rounding relative to its own size (the root can be
+  // many decades below q_trial / 3G when n < 1 makes sigma_y steep near 0).
+  const double tol_g = 1e-11 * q_trial;
+
+  // Initial guess: hardening linearised at eps_p, no rate term (the rate
+  // term's slope is unbounded at dp = 0).
+  double h0 = 0.0;
+  if (eps_p > 0.0) {
+    h0 = jc.n * (hard0 - jc.A) / eps_p;
+  } else if (jc.n == 1.0) {
+    h0 = jc.B;
+  }
+  double dp = (dp_guess > 0.0 && dp_guess < hi)
+                  ? dp_guess
+                  : std::min(hi, (q_trial - scale * hard0) / (three_g + scale * h0));
+  r.converged = false;
+  for (int it = 1; it <= max_iterations; ++it) {
+    r.iterations = it;
+    const double ep = eps_p + dp;
+    double hard = jc.A, d_hard = 0.0;
+    if (ep > 0.0) {
+      const double pw = std::pow(ep, jc.n);
+      hard += jc.B * pw;
+      d_hard = jc.B * jc.n * pw / ep;
+    }
+    double rate = 1.0, d_rate = 0.0;
+    const double x = dp * inv_ref;
+    if (rate_on && x > 1.0) {
+      rate += jc.C * std::log(x);
+      d_rate = jc.C / dp;
+    }
+    r.hard_rate = hard * rate;
+    const double g = q_trial - three_g * dp - scale * r.hard_rate;
+    if (std::abs(g) <= tol_g) {
+      r.converged = true;
+      break;
+    }
+    if (g > 0.0) {
+      lo = dp;
+    } else {
+      hi = dp;
+    }
+    if (hi - lo <= 1e-14 * hi) {
+      r.converged = true;
+      break;
+    }
+    const double slope = -three_g - scale * (d_hard * rate + hard * d_rate);
+    double next = dp - g / slope;
+    // Bisect when Newton leaves the bracket, stalls, or meets an unbounded slope.
+    if (!(next > lo && next < hi) || next == dp) next = 0.5 * (lo + hi);
+    dp = next;
+  }
+  r.delta_eps_p = dp;
+  return r;
+}
+
+}  // namespace splat

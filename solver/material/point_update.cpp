@@ -1,0 +1,171 @@
+#include "solver/material/point_update.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "solver/material/damage.hpp"
+#include "solver/material/elasticity.hpp"
+#include "solver/material/eos.hpp"
+#include "solver/material/johnson_cook.hpp"
+
+namespace splat {
+
+MaterialConstants derive_constants(const Material& m) {
+  MaterialConstants c;
+  c.G = m.elastic.shear_modulus();
+  c.K = m.elastic.bulk_modulus();
+  c.rho0 = m.density;
+  c.c_p = m.thermal.c_p;
+  c.chi = m.thermal.heat_fraction;
+  double K_wave = c.K;
+  if (m.eos.model == EosModel::mie_gruneisen && m.eos.mie_gruneisen) {
+    K_wave = std::max(c.K, c.rho0 * m.eos.mie_gruneisen->c0 * m.eos.mie_gruneisen->c0);
+  }
+  c.wave_speed = std::sqrt((K_wave + 4.0 * c.G / 3.0) / c.rho0);
+  return c;
+}
+
+PointState initial_point_state(const Material& m, const ModelSwitches& sw, double T0, double D0) {
+  PointState st;
+  st.T = T0;
+  st.D = sw.damage ? D0 : 0.0;
+  st.sigma_y_static = (1.0 - st.D) * johnson_cook_flow_stress(m.strength, sw, 0.0, 0.0, T0).value;
+  st.sigma_y = st.sigma_y_static;
+  st.sigma_y_peak = st.sigma_y;
+  return st;
+}
+
+namespace {
+
+// Largest shear stress (sigma_1 - sigma_3) / 2 of a symmetric stress.
+double max_shear_stress(const Mat3& sigma) {
+  Eigen::SelfAdjointEigenSolver<Mat3> es;
+  es.computeDirect(sigma, Eigen::EigenvaluesOnly);
+  const auto& ev = es.eigenvalues();  // ascending
+  return 0.5 * (ev(2) - ev(0));
+}
+
+// Damage initiation and evolution for the plastic increment dp of this step.
+void update_damage(const Material& m, const ModelSwitches& sw, PointState& st, double dp, double dt,
+                   double length) {
+  const DamageParams& dm = m.damage;
+  if (!sw.damage || dm.initiation == DamageInitiation::none || dp <= 0.0) return;
+
+  const double eps_dot = dp / dt;
+  double dp_after_init = 0.0;
+  if (st.eps_p_init < 0.0) {
+    const double q = von_mises(st.s);
+    double eps_f = 0.0;
+    if (dm.initiation == DamageInitiation::johnson_cook) {
+      const double eta = q > 0.0 ? -st.p / q : 0.0;
+      eps_f = jc_failure_strain(dm.jc, m.strength, sw.rate_hardening, sw.thermal_softening, eta,
+                                eps_dot, st.T);
+    } else {
+      const double theta = shear_stress_ratio(dm.shear.k_s, st.p, q, max_shear_stress(st.cauchy()));
+      eps_f = shear_failure_strain(dm.shear, theta, eps_dot);
+    }
+    const double omega_old = st.omega;
+    st.omega += dp / eps_f;
+    if (st.omega < 1.0) return;
+    // Initiation inside this increment: the part of dp past omega = 1 drives
+    // the evolution.
+    const double frac_before = (1.0 - omega_old) / (st.omega - omega_old);
+    st.eps_p_init = st.eps_p - dp + frac_before * dp;
+    dp_after_init = (1.0 - frac_before) * dp;
+  } else {
+    dp_after_init = dp;
+  }
+
+  double D = st.D;
+  switch (dm.evolution) {
+    case DamageEvolution::instant:
+      D = dm.D_max;
+      break;
+    case DamageEvolution::plastic_strain: {
+      const double span = dm.eps_p_max - st.eps_p_init;
+      D = span > 0.0 ? D + dp_after_init / span : dm.D_max;
+      break;
+    }
+    case DamageEvolution::fracture_energy:
+      D += dm.D_max * st.sigma_y * dp_after_init * length / dm.G_f;
+      break;
+  }
+  st.D = std::min(std::max(D, st.D), dm.D_max);
+}
+
+}  // namespace
+
+PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
+                               const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
+                               double J_new, double dt, double length) {
+  PointUpdateResult result;
+  const double keep = 1.0 - st.D;
+  const double G_d = keep * mc.G;
+  const Mat3 sigma_old = st.cauchy();
+  const double J_old = st.J;
+
+  // Elastic predictor for the deviator, then radial return.
+  Mat3 s = st.s + 2.0 * G_d * deviator(d_eps);
+  const double q_trial = von_mises(s);
+  double dp = 0.0;
+  double hard_rate = 0.0;
+  double scale = 0.0;
+  if (q_trial > st.sigma_y_static) {
+    const JohnsonCookParams& jc = m.strength;
+    scale = keep * jc_thermal_factor(jc, sw.thermal_softening, st.T);
+    const double hard0 = jc_hardening(jc, st.eps_p);
+    const ReturnMapResult rm = johnson_cook_return(jc, sw.rate_hardening, q_trial, G_d, st.eps_p,
+                                                   dt, scale, hard0, st.eps_dot_p * dt);
+    dp = rm.delta_eps_p;
+    hard_rate = rm.hard_rate;
+    result.iterations = rm.iterations;
+    result.converged = rm.converged;
+    // Radial scaling of the trial deviator onto the yield surface.
+    s *= std::max(q_trial - 3.0 * G_d * dp, 0.0) / q_trial;
+  }
+  st.s = s;
+  st.eps_p += dp;
+  st.eps_dot_p = dp / dt;
+
+  // Pressure from the EOS at J_new, with the energy term implicit in p:
+  // e_new = e_old + J_mid/2 (sigma_old + sigma_new) : d_eps, sigma = s - p I.
+  st.J = J_new;
+  const double J_mid = 0.5 * (J_old + J_new);
+  const double tr = d_eps.trace();
+  const double e_star =
+      st.e +
+      0.5 * J_mid * ((sigma_old.array() * d_eps.array()).sum() + (s.array() * d_eps.array()).sum());
+  const EosSplit eos = eos_split(m.eos, mc.K, mc.rho0, J_new);
+  double p = (eos.p_cold + eos.gamma_e * e_star) / (1.0 + 0.5 * eos.gamma_e * J_mid * tr);
+  p = apply_tension_damage(p, st.D);
+  st.p = p;
+  st.e = e_star - 0.5 * J_mid * p * tr;
+
+  // Adiabatic heating: a fraction chi of the plastic work per unit current
+  // volume, sigma_y dp, raises the temperature of mass rho = rho0 / J.
+  if (dp > 0.0) {
+    const double rate_f = jc_rate_factor(m.strength, sw.rate_hardening, st.eps_dot_p);
+    const double hard = hard_rate / rate_f;  // A + B eps_p^n at the end of the step
+    st.sigma_y = scale * hard_rate;          // flow stress of this increment
+    const double w = st.sigma_y * dp;        // plastic work, J/m^3 of current volume
+    st.plastic_work += J_new * w;
+    const bool heated = sw.adiabatic_heating && w > 0.0;
+    if (heated) st.T += mc.chi * w * J_new / (mc.rho0 * mc.c_p);
+    const double D_old = st.D;
+    update_damage(m, sw, st, dp, dt, length);
+    // Temperature or damage moved: the strength at the end state changes.
+    const double end_scale =
+        (heated || st.D != D_old)
+            ? (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T)
+            : scale;
+    st.sigma_y_static = end_scale * hard;
+    st.sigma_y = st.sigma_y_static * rate_f;
+  } else {
+    st.sigma_y = st.sigma_y_static;  // no plastic rate: no rate hardening
+  }
+  st.sigma_y_peak = std::max(st.sigma_y_peak, st.sigma_y);
+  return result;
+}
+
+}  // namespace splat

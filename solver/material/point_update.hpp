@@ -1,0 +1,66 @@
+// The stress update of one material point over one time step: elasticity,
+// equation of state, Johnson-Cook plasticity with adiabatic heating, damage.
+// A pure function of its inputs; the loops over elements or particles that
+// call it live in the bodies, the time loop above them.
+#pragma once
+
+#include "solver/common/types.hpp"
+#include "solver/material/material.hpp"
+
+namespace splat {
+
+// Constants derived once per material.
+struct MaterialConstants {
+  double G = 0.0;     // shear modulus, Pa
+  double K = 0.0;     // bulk modulus, Pa
+  double rho0 = 0.0;  // reference density, kg/m^3
+  double c_p = 0.0;   // specific heat, J/(kg K)
+  double chi = 0.0;   // inelastic heat fraction, -
+  // Longitudinal (P-wave) speed sqrt((K + 4G/3) / rho0) of the undamaged
+  // material, m/s; with a Mie-Grueneisen EOS the bulk part uses max(K, rho0 c0^2).
+  double wave_speed = 0.0;
+};
+
+MaterialConstants derive_constants(const Material& m);
+
+// State of one point; every field changes every step.
+struct PointState {
+  Mat3 s = Mat3::Zero();        // deviatoric Cauchy stress, Pa
+  double p = 0.0;               // pressure, positive in compression, Pa
+  double J = 1.0;               // volume ratio V / V0, -
+  double e = 0.0;               // internal energy per unit reference volume, J/m^3
+  double eps_p = 0.0;           // equivalent plastic strain, -
+  double eps_dot_p = 0.0;       // plastic strain rate of the last step, 1/s
+  double T = 300.0;             // temperature, K
+  double D = 0.0;               // damage, -
+  double omega = 0.0;           // damage initiation indicator (initiated at 1), -
+  double eps_p_init = -1.0;     // plastic strain at initiation, -1 before, -
+  double sigma_y = 0.0;         // current (damaged) yield stress at the last plastic rate, Pa
+  double sigma_y_static = 0.0;  // (1 - D)(A + B eps_p^n)(1 - T*^m): yield stress at zero
+                                // plastic rate; eps_p, T and D change only in plastic steps,
+                                // so an elastic step needs no Johnson-Cook evaluation, Pa
+  double sigma_y_peak = 0.0;    // largest sigma_y seen, Pa
+  double plastic_work = 0.0;    // plastic work per unit reference volume, J/m^3
+
+  Mat3 cauchy() const { return s - p * Mat3::Identity(); }
+};
+
+// Initial state at temperature T0 with initial damage D0 (sets sigma_y).
+PointState initial_point_state(const Material& m, const ModelSwitches& sw, double T0, double D0);
+
+struct PointUpdateResult {
+  int iterations = 0;     // return-mapping iterations (0 for an elastic step)
+  bool converged = true;  // false only if the return mapping failed to converge
+};
+
+// Advances `st` by one step. The caller has already rotated st.s to the end
+// of the step (jaumann_rotate) and supplies:
+//   d_eps  rate of deformation times dt (symmetric strain increment), -
+//   J_new  volume ratio at the end of the step, -
+//   dt     time step, s
+//   length characteristic element length for the fracture-energy law, m
+PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
+                               const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
+                               double J_new, double dt, double length);
+
+}  // namespace splat
