@@ -14,10 +14,12 @@ using CommandTable = std::vector<std::pair<CLI::App*, std::function<int()>>>;
 
 void register_materials(CLI::App& app, CommandTable& commands);
 void register_mat_point(CLI::App& app, CommandTable& commands);
+void register_run(CLI::App& app, CommandTable& commands);
 
 inline void register_all(CLI::App& app, CommandTable& commands) {
   register_materials(app, commands);
   register_mat_point(app, commands);
+  register_run(app, commands);
 }
 
 }  // namespace splat::app

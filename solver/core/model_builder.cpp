@@ -1,0 +1,341 @@
+#include "solver/core/model_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "solver/input/schema.hpp"
+#include "solver/mesh/generators.hpp"
+#include "solver/mesh/mesh.hpp"
+
+namespace splat {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& pointer, const std::string& message) {
+  throw InputError({SchemaViolation{pointer, message}});
+}
+
+std::string body_pointer(std::size_t b) {
+  return "/bodies/" + std::to_string(b);
+}
+
+// Elements along [a, b] so that the element at the focus is about h and sizes
+// grow by `ratio` per element away from it (uniform when ratio is 1).
+int graded_count(double a, double b, double h, double focus, double ratio) {
+  const double length = b - a;
+  if (ratio <= 1.0 + 1e-12) return std::max(1, static_cast<int>(std::lround(length / h)));
+  auto side = [&](double l) {
+    if (l <= 0.0) return 0;
+    return static_cast<int>(std::ceil(std::log1p(l * (ratio - 1.0) / h) / std::log(ratio)));
+  };
+  const double f = std::clamp(focus, a, b);
+  return std::max(1, side(f - a) + side(b - f));
+}
+
+struct Resolution {
+  int across = 0;  // elements across the characteristic length
+  double h = 0.0;  // element size, m
+};
+
+Resolution resolution(const BodySpec& b, double characteristic_length) {
+  Resolution r;
+  if (b.element_size > 0.0) {
+    r.h = b.element_size;
+    r.across = std::max(1, static_cast<int>(std::lround(characteristic_length / b.element_size)));
+  } else {
+    r.across = std::max(1, b.elements_across);
+    r.h = characteristic_length / r.across;
+  }
+  return r;
+}
+
+Sector to_sector(SectorKind s) {
+  switch (s) {
+    case SectorKind::full:
+      return Sector::full;
+    case SectorKind::half:
+      return Sector::half;
+    case SectorKind::quarter:
+      return Sector::quarter;
+  }
+  return Sector::full;
+}
+
+Grading to_grading(const GradingSpec& g, bool axisymmetric) {
+  Grading out;
+  out.enabled = g.enabled;
+  out.ratio = g.enabled ? g.ratio : 1.0;
+  // Scene coordinates are (x, y, z); an axisymmetric focus is (r, z).
+  out.focus = axisymmetric ? Vec3(g.focus.x(), g.focus.z(), 0.0) : g.focus;
+  return out;
+}
+
+FeSettings settings_of(const BodySpec& b) {
+  FeSettings s;
+  s.stiffness_hourglass = b.hourglass == HourglassType::stiffness;
+  s.hourglass_coefficient = b.hourglass_coefficient;
+  s.q_linear = b.q_linear;
+  s.q_quadratic = b.q_quadratic;
+  s.erosion = b.erosion;
+  s.erosion_min_time_step = b.erosion_min_time_step;
+  return s;
+}
+
+AxisymMesh axisym_mesh(const BodySpec& b, std::size_t index) {
+  const Geometry& g = b.geometry;
+  const bool graded = b.grading.enabled;
+  const Grading grading = to_grading(b.grading, true);
+  switch (g.type) {
+    case GeometryType::sphere:
+    case GeometryType::half_disc: {
+      const Resolution r = resolution(b, g.radius);
+      return axisym_half_disc(g.radius, g.centre.z(), r.across);
+    }
+    case GeometryType::cylinder:
+    case GeometryType::rectangle: {
+      const double lz = g.z_max - g.z_min;
+      const double lc = g.type == GeometryType::cylinder ? g.radius : std::min(g.radius, lz);
+      const Resolution r = resolution(b, lc);
+      const double ratio = graded ? grading.ratio : 1.0;
+      const int nr = graded_count(0.0, g.radius, r.h, grading.focus.x(), ratio);
+      const int nz = graded_count(g.z_min, g.z_max, r.h, grading.focus.y(), ratio);
+      return axisym_rectangle(g.radius, g.z_min, g.z_max, nr, nz, grading);
+    }
+    case GeometryType::box:
+      break;
+  }
+  fail(body_pointer(index) + "/geometry/type", "a box needs the fe-hex discretization");
+}
+
+HexMesh hex_mesh(const BodySpec& b, std::size_t index) {
+  const Geometry& g = b.geometry;
+  const Grading grading = to_grading(b.grading, false);
+  const double ratio = b.grading.enabled ? grading.ratio : 1.0;
+  switch (g.type) {
+    case GeometryType::sphere: {
+      const Resolution r = resolution(b, g.radius);
+      return hex_sphere(g.radius, g.centre, r.across, to_sector(b.sector));
+    }
+    case GeometryType::cylinder: {
+      const Resolution r = resolution(b, g.radius);
+      const int nz = graded_count(g.z_min, g.z_max, r.h, grading.focus.z(), ratio);
+      return hex_cylinder(g.radius, g.z_min, g.z_max, r.across, nz, to_sector(b.sector), grading);
+    }
+    case GeometryType::box: {
+      const Vec3 size = g.hi - g.lo;
+      const Resolution r = resolution(b, size.minCoeff());
+      const int nx = graded_count(g.lo.x(), g.hi.x(), r.h, grading.focus.x(), ratio);
+      const int ny = graded_count(g.lo.y(), g.hi.y(), r.h, grading.focus.y(), ratio);
+      const int nz = graded_count(g.lo.z(), g.hi.z(), r.h, grading.focus.z(), ratio);
+      return hex_box(g.lo, g.hi, nx, ny, nz, grading);
+    }
+    case GeometryType::half_disc:
+    case GeometryType::rectangle:
+      break;
+  }
+  fail(body_pointer(index) + "/geometry/type",
+       "half-disc and rectangle need the fe-axisym discretization");
+}
+
+// Velocity components a symmetry condition on `bit` fixes.
+int symmetry_component(std::uint32_t bit) {
+  if (bit & (boundary_x_min | boundary_x_max)) return 0;
+  if (bit & (boundary_y_min | boundary_y_max)) return 1;
+  if (bit & (boundary_z_min | boundary_z_max)) return 2;
+  return -1;
+}
+
+}  // namespace
+
+Vec3 to_user_frame(const Model& model, const Vec3& v) {
+  return model.axisymmetric ? Vec3(v.x(), 0.0, v.y()) : v;
+}
+
+Vec3 centroid_velocity(const Model& model, const Vec3& momentum, double mass) {
+  if (mass <= 0.0) return Vec3::Zero();
+  const Vec3 v = momentum / mass;
+  return model.axisymmetric ? Vec3(0.0, 0.0, v.y()) : v;
+}
+
+Vec3 to_internal_frame(const Model& model, const Vec3& v) {
+  return model.axisymmetric ? Vec3(v.x(), v.z(), 0.0) : v;
+}
+
+Model build_model(const Scene& scene) {
+  Model model;
+  if (scene.bodies.empty()) fail("/bodies", "at least one body is required");
+  model.axisymmetric = scene.bodies.front().discretization == Discretization::fe_axisym;
+
+  std::vector<std::vector<std::array<int, 4>>> body_faces;  // global ids
+  std::vector<std::vector<std::uint32_t>> body_face_tags;
+  std::vector<int> face_counts;
+  for (std::size_t bi = 0; bi < scene.bodies.size(); ++bi) {
+    const BodySpec& b = scene.bodies[bi];
+    const bool axi = b.discretization == Discretization::fe_axisym;
+    if (b.discretization == Discretization::sph) {
+      fail(body_pointer(bi) + "/discretization/type", "sph bodies are not available yet");
+    }
+    if (axi != model.axisymmetric) {
+      fail(body_pointer(bi) + "/discretization/type",
+           "all bodies of a scene must be axisymmetric, or all 3D");
+    }
+    // make_fe_body takes the velocity in scene coordinates (axisymmetric: the
+    // z component moves along the axis).
+    const Vec3& velocity = b.velocity;
+    const std::size_t first_node = model.nodes.size();
+    BodyMeshInfo info;
+    std::vector<std::array<int, 4>> faces;
+    std::vector<std::uint32_t> tags;
+    if (axi) {
+      const AxisymMesh mesh = axisym_mesh(b, bi);
+      model.bodies.push_back(make_fe_body(b.name, mesh, b.material, b.switches, settings_of(b),
+                                          velocity, b.temperature, b.seed, model.nodes));
+      for (const auto& q : mesh.quads)
+        info.connectivity.insert(info.connectivity.end(), q.begin(), q.end());
+      for (std::size_t k = 0; k < mesh.boundary_segments.size(); ++k) {
+        const auto& sgm = mesh.boundary_segments[k];
+        faces.push_back(
+            {static_cast<int>(first_node) + sgm[0], static_cast<int>(first_node) + sgm[1], 0, 0});
+        tags.push_back(mesh.segment_boundary[k]);
+      }
+      face_counts.push_back(2);
+    } else {
+      const HexMesh mesh = hex_mesh(b, bi);
+      model.bodies.push_back(make_fe_body(b.name, mesh, b.material, b.switches, settings_of(b),
+                                          velocity, b.temperature, b.seed, model.nodes));
+      for (const auto& h : mesh.hexes)
+        info.connectivity.insert(info.connectivity.end(), h.begin(), h.end());
+      for (std::size_t k = 0; k < mesh.boundary_faces.size(); ++k) {
+        std::array<int, 4> f = mesh.boundary_faces[k];
+        for (int& id : f) id += static_cast<int>(first_node);
+        faces.push_back(f);
+        tags.push_back(mesh.face_boundary[k]);
+      }
+      face_counts.push_back(4);
+    }
+    model.meshes.push_back(std::move(info));
+    body_faces.push_back(std::move(faces));
+    body_face_tags.push_back(std::move(tags));
+  }
+
+  const std::size_t n = model.nodes.size();
+  model.constraint_mask.assign(n, 0);
+  model.constraint_value.assign(n, Vec3::Zero());
+  // The symmetry axis of axisymmetric bodies: no radial motion at r = 0.
+  if (model.axisymmetric) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (model.nodes.boundary[i] & boundary_x_min) model.constraint_mask[i] |= 1u;
+    }
+  }
+
+  auto body_index = [&](const std::string& name, const std::string& pointer) {
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (scene.bodies[b].name == name) return b;
+    }
+    fail(pointer, "no body named '" + name + "'");
+  };
+
+  for (std::size_t ci = 0; ci < scene.boundaries.size(); ++ci) {
+    const BoundarySpec& bc = scene.boundaries[ci];
+    const std::string ptr = "/boundary_conditions/" + std::to_string(ci);
+    const std::size_t bi = body_index(bc.body, ptr + "/body");
+    const FeBody& body = model.bodies[bi];
+    if (bc.type == BoundaryType::absorbing) {
+      const Material& m = body.material;
+      const double rho_cp = m.density * body.constants.wave_speed;
+      const double rho_cs = std::sqrt(m.density * body.constants.G);
+      for (std::size_t k = 0; k < body_faces[bi].size(); ++k) {
+        if (!(body_face_tags[bi][k] & bc.on)) continue;
+        AbsorbingFace f;
+        f.nodes = body_faces[bi][k];
+        f.count = face_counts[bi];
+        f.rho_cp = rho_cp;
+        f.rho_cs = rho_cs;
+        model.absorbing.push_back(f);
+      }
+      continue;
+    }
+    std::uint8_t mask = 0;
+    Vec3 value = Vec3::Zero();
+    const std::uint8_t all = model.axisymmetric ? 0b011 : 0b111;
+    switch (bc.type) {
+      case BoundaryType::fixed:
+        mask = all;
+        break;
+      case BoundaryType::velocity:
+        mask = all;
+        value = to_internal_frame(model, bc.velocity);
+        break;
+      case BoundaryType::symmetry: {
+        const int c = symmetry_component(bc.on);
+        if (c < 0) fail(ptr + "/on", "a symmetry condition needs a plane (x_min ... z_max)");
+        mask = static_cast<std::uint8_t>(1u << c);
+        break;
+      }
+      case BoundaryType::absorbing:
+        break;
+    }
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      if (!(model.nodes.boundary[i] & bc.on)) continue;
+      model.constraint_mask[i] |= mask;
+      for (int c = 0; c < 3; ++c) {
+        if (mask & (1u << c)) model.constraint_value[i][c] = value[c];
+      }
+    }
+  }
+
+  for (std::size_t wi = 0; wi < scene.interactions.size(); ++wi) {
+    const InteractionSpec& it = scene.interactions[wi];
+    const std::string ptr = "/interactions/" + std::to_string(wi);
+    if (it.type != InteractionType::rigid_wall) continue;
+    RigidWall wall;
+    wall.point = to_internal_frame(model, it.point);
+    wall.normal = to_internal_frame(model, it.normal);
+    if (model.axisymmetric && std::abs(it.normal.x()) + std::abs(it.normal.y()) > 0.0) {
+      fail(ptr + "/normal", "an axisymmetric scene needs a wall normal along z");
+    }
+    wall.normal.normalize();
+    std::vector<std::size_t> targets;
+    if (it.bodies.empty()) {
+      for (std::size_t b = 0; b < model.bodies.size(); ++b) targets.push_back(b);
+    } else {
+      for (std::size_t k = 0; k < it.bodies.size(); ++k) {
+        targets.push_back(body_index(it.bodies[k], ptr + "/bodies/" + std::to_string(k)));
+      }
+    }
+    for (std::size_t b : targets) {
+      for (std::size_t i = model.bodies[b].node_begin; i < model.bodies[b].node_end; ++i) {
+        wall.nodes.push_back(static_cast<int>(i));
+      }
+    }
+    model.walls.push_back(std::move(wall));
+  }
+  return model;
+}
+
+double initial_time_step_bound(const Model& model) {
+  double dt = std::numeric_limits<double>::infinity();
+  const NodeSet& n = model.nodes;
+  static constexpr int hex_edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                           {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  static constexpr int quad_edges[4][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  for (const FeBody& b : model.bodies) {
+    const double c = b.constants.wave_speed;
+    const bool hex = b.kind == ElementKind::hex8;
+    for (const auto& conn : b.conn) {
+      double h = std::numeric_limits<double>::infinity();
+      const int edges = hex ? 12 : 4;
+      for (int k = 0; k < edges; ++k) {
+        const int a = hex ? hex_edges[k][0] : quad_edges[k][0];
+        const int bb = hex ? hex_edges[k][1] : quad_edges[k][1];
+        h = std::min(h, (n.x[conn[a]] - n.x[conn[bb]]).norm());
+      }
+      dt = std::min(dt, h / c);
+    }
+  }
+  return dt;
+}
+
+}  // namespace splat

@@ -1,0 +1,62 @@
+// Turns a Scene into the solver's state: meshes each body, builds the finite
+// element bodies in one NodeSet, and resolves boundary conditions and rigid
+// walls into per-node constraints and face lists.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "solver/fe/fe_body.hpp"
+#include "solver/scene/scene.hpp"
+
+namespace splat {
+
+struct RigidWall {
+  Vec3 point = Vec3::Zero();    // internal frame, m
+  Vec3 normal = Vec3::UnitZ();  // internal frame, unit, into the allowed side
+  std::vector<int> nodes;       // nodes the wall acts on
+};
+
+// A boundary face (3D quad) or segment (axisymmetric, count 2) with the
+// impedances of its body's material, for viscous absorbing boundaries.
+struct AbsorbingFace {
+  std::array<int, 4> nodes{};
+  int count = 4;
+  double rho_cp = 0.0;  // rho0 c_p (P wave), kg/(m^2 s)
+  double rho_cs = 0.0;  // rho0 c_s (S wave), kg/(m^2 s)
+};
+
+// Connectivity of one body for the result file (fixed for the run).
+struct BodyMeshInfo {
+  std::vector<int> connectivity;  // flattened, local node ids, 4 or 8 per cell
+};
+
+struct Model {
+  bool axisymmetric = false;
+  NodeSet nodes;
+  std::vector<FeBody> bodies;
+  std::vector<BodyMeshInfo> meshes;           // one per body
+  std::vector<std::uint8_t> constraint_mask;  // per node: bit c = component c prescribed
+  std::vector<Vec3> constraint_value;         // per node: prescribed velocity, m/s
+  std::vector<RigidWall> walls;
+  std::vector<AbsorbingFace> absorbing;
+};
+
+// Throws InputError (solver/input/schema.hpp) naming the scene field when the
+// scene cannot be modelled.
+Model build_model(const Scene& scene);
+
+// Conservative CFL bound before the first force evaluation: shortest element
+// edge over the undamaged P-wave speed, s.
+double initial_time_step_bound(const Model& model);
+
+// Internal frame -> user frame: axisymmetric (r, z, 0) -> (r, 0, z).
+Vec3 to_user_frame(const Model& model, const Vec3& v);
+// Centre-of-mass velocity in the user frame from a body's momentum and mass
+// (axisymmetric: only the axial component; the radial one averages to zero).
+Vec3 centroid_velocity(const Model& model, const Vec3& momentum, double mass);
+// User frame -> internal frame: axisymmetric (x, y, z) -> (hypot(x, y), z, 0).
+Vec3 to_internal_frame(const Model& model, const Vec3& v);
+
+}  // namespace splat

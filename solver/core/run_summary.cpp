@@ -1,0 +1,75 @@
+#include "solver/core/run_summary.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "solver/build_info.hpp"
+
+namespace splat {
+
+const char* to_string(RunOutcome outcome) {
+  switch (outcome) {
+    case RunOutcome::finished:
+      return "finished";
+    case RunOutcome::unstable:
+      return "unstable";
+    case RunOutcome::timed_out:
+      return "timed-out";
+    case RunOutcome::cancelled:
+      return "cancelled";
+    case RunOutcome::error:
+      return "error";
+  }
+  return "error";
+}
+
+namespace {
+
+nlohmann::json vec(const Vec3& v) {
+  return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
+
+nlohmann::json path_or_null(const std::string& p) {
+  return p.empty() ? nlohmann::json(nullptr) : nlohmann::json(p);
+}
+
+}  // namespace
+
+nlohmann::json to_json(const RunSummary& s) {
+  nlohmann::json j;
+  j["solver_version"] = std::string(version());
+  j["git_commit"] = std::string(git_commit());
+  j["scene"] = s.scene;
+  j["outcome"] = to_string(s.outcome);
+  j["reason"] = s.reason;
+  j["stop_reason"] = s.stop_reason;
+  j["steps"] = s.steps;
+  j["end_time"] = s.end_time;
+  j["wall_seconds"] = s.wall_seconds;
+  j["threads"] = s.threads;
+  const EnergyBudget& e = s.energy;
+  j["energy"] = {
+      {"initial_total", e.initial_total}, {"kinetic", e.kinetic},
+      {"internal", e.internal},           {"plastic_work", e.plastic_work},
+      {"hourglass", e.hourglass},         {"artificial_viscosity", e.artificial_viscosity},
+      {"absorbed", e.absorbed},           {"eroded", e.eroded},
+      {"wall_work", e.wall_work},         {"external_work", e.external_work},
+      {"balance_error", e.balance_error}};
+  j["bodies"] = nlohmann::json::array();
+  for (const BodySummary& b : s.bodies) {
+    j["bodies"].push_back({{"name", b.name},
+                           {"elements", b.elements},
+                           {"nodes", b.nodes},
+                           {"mass", b.mass},
+                           {"centroid_velocity", vec(b.centroid_velocity)},
+                           {"kinetic_energy", b.kinetic_energy},
+                           {"eroded_elements", b.eroded_elements},
+                           {"max_plastic_strain", b.max_plastic_strain},
+                           {"max_temperature", b.max_temperature},
+                           {"extent_min", vec(b.extent_min)},
+                           {"extent_max", vec(b.extent_max)}});
+  }
+  j["output"] = {{"hdf5", path_or_null(s.hdf5_path)}, {"xdmf", path_or_null(s.xdmf_path)}};
+  return j;
+}
+
+}  // namespace splat

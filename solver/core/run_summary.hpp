@@ -1,0 +1,69 @@
+// How a run ended and the figures behind it: the document `splat run --json`
+// prints (schemas/result.schema.json) and the attributes of the result file.
+#pragma once
+
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "solver/common/types.hpp"
+
+namespace splat {
+
+enum class RunOutcome {
+  finished,   // reached the end time
+  unstable,   // a numerical check failed (see reason)
+  timed_out,  // wall-clock or step limit
+  cancelled,  // stopped from outside
+  error,      // could not run or write its output (see reason)
+};
+
+const char* to_string(RunOutcome outcome);
+
+// Energy terms, J (axisymmetric runs are integrated over the full 2 pi).
+struct EnergyBudget {
+  double initial_total = 0.0;
+  double kinetic = 0.0;
+  double internal = 0.0;              // elastic + plastic, from the material states
+  double plastic_work = 0.0;          // part of `internal`
+  double hourglass = 0.0;             // work of the hourglass forces
+  double artificial_viscosity = 0.0;  // work of the bulk viscosity
+  double absorbed = 0.0;              // taken out by absorbing boundaries
+  double eroded = 0.0;                // kinetic + internal energy of eroded elements
+  double wall_work = 0.0;             // work of rigid walls on the bodies (<= 0)
+  double external_work = 0.0;         // work of prescribed velocities and other constraints
+  double balance_error = 0.0;         // (total now - initial - external - wall) / initial, -
+};
+
+struct BodySummary {
+  std::string name;
+  long long elements = 0;
+  long long nodes = 0;
+  double mass = 0.0;                      // kg
+  Vec3 centroid_velocity = Vec3::Zero();  // m/s
+  double kinetic_energy = 0.0;            // J
+  long long eroded_elements = 0;
+  double max_plastic_strain = 0.0;  // -
+  double max_temperature = 0.0;     // K
+  Vec3 extent_min = Vec3::Zero();   // m
+  Vec3 extent_max = Vec3::Zero();   // m
+};
+
+struct RunSummary {
+  std::string scene;
+  RunOutcome outcome = RunOutcome::finished;
+  std::string reason;       // why it ended this way, for people
+  std::string stop_reason;  // short machine-readable cause: end-time, energy-balance, ...
+  long long steps = 0;
+  double end_time = 0.0;      // s
+  double wall_seconds = 0.0;  // s
+  int threads = 1;
+  EnergyBudget energy;
+  std::vector<BodySummary> bodies;
+  std::string hdf5_path;  // empty when no file was written
+  std::string xdmf_path;
+};
+
+nlohmann::json to_json(const RunSummary& summary);
+
+}  // namespace splat

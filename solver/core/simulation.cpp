@@ -1,0 +1,359 @@
+#include "solver/core/simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "solver/core/model_builder.hpp"
+#include "solver/core/simulation_impl.hpp"
+#include "solver/io/result_file.hpp"
+
+namespace splat {
+
+Simulation::Simulation(const Scene& scene, nlohmann::json resolved_scene, SimulationOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->scene = scene;
+  impl_->resolved = std::move(resolved_scene);
+  impl_->options = std::move(options);
+  impl_->model = build_model(scene);
+}
+
+Simulation::~Simulation() = default;
+
+const NodeSet& Simulation::nodes() const {
+  return impl_->model.nodes;
+}
+const std::vector<FeBody>& Simulation::bodies() const {
+  return impl_->model.bodies;
+}
+bool Simulation::axisymmetric() const {
+  return impl_->model.axisymmetric;
+}
+
+// Stage 1: central-difference velocity update, then velocity constraints and
+// rigid walls. The work of the constraint reactions R = m (v - v_free) / dt
+// over the coming displacement dt v is booked as external (or wall) work.
+void Simulation::Impl::update_velocities(bool first) {
+  NodeSet& n = model.nodes;
+  const double dt_v = first ? 0.5 * dt_half : 0.5 * (dt_half_prev + dt_half);
+  const std::size_t count = n.size();
+  double ext_work = 0.0, wall_work = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double m = n.mass[i];
+    if (m <= 0.0) continue;  // node of eroded elements only
+    Vec3 v = n.v[i] + (dt_v / m) * n.f[i];
+    const std::uint8_t mask = model.constraint_mask[i];
+    if (mask != 0) {
+      const Vec3 v_free = v;
+      for (int c = 0; c < 3; ++c) {
+        if (mask & (1u << c)) v[c] = model.constraint_value[i][c];
+      }
+      ext_work += m * (v - v_free).dot(v) * dt_half / dt_v;
+    }
+    n.v[i] = v;
+  }
+  for (const RigidWall& w : model.walls) {
+    for (int i : w.nodes) {
+      const double m = n.mass[i];
+      if (m <= 0.0) continue;
+      const double gap = (n.x[i] - w.point).dot(w.normal) + dt_half * n.v[i].dot(w.normal);
+      if (gap < 0.0) {
+        const double dv = -gap / dt_half;  // lands the node on the wall
+        n.v[i] += dv * w.normal;
+        wall_work += m * dv * n.v[i].dot(w.normal) * dt_half / dt_v;
+      }
+    }
+  }
+  energy.external_work += ext_work * scale();
+  energy.wall_work += wall_work * scale();
+}
+
+// Stage 2.
+void Simulation::Impl::predict_positions() {
+  NodeSet& n = model.nodes;
+  const std::size_t count = n.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < count; ++i) n.x[i] += dt_half * n.v[i];
+}
+
+// Stage 4. Returns false when the run must stop (reason in s).
+bool Simulation::Impl::internal_forces(RunSummary& s) {
+  NodeSet& n = model.nodes;
+  std::fill(n.f.begin(), n.f.end(), Vec3::Zero());
+  dt_stable = std::numeric_limits<double>::infinity();
+  for (FeBody& body : model.bodies) {
+    FeStepResult r = fe_internal_forces(body, n, dt_half);
+    dt_stable = std::min(dt_stable, r.dt_stable);
+    energy.hourglass += r.hourglass_power * dt_half * scale();
+    energy.artificial_viscosity += r.viscosity_power * dt_half * scale();
+    max_return_iterations = std::max(max_return_iterations, r.max_return_iterations);
+    for (int e : r.to_erode) {
+      const ErodedEnergy er = erode_element(body, n, e);
+      energy.eroded += (er.internal + er.kinetic) * scale();
+    }
+    if (r.return_failed) {
+      s.outcome = RunOutcome::unstable;
+      s.stop_reason = "return-mapping";
+      s.reason = "the Johnson-Cook return mapping did not converge in body '" + body.name + "'";
+      return false;
+    }
+    if (r.inverted > 0) {
+      s.outcome = RunOutcome::unstable;
+      s.stop_reason = "element-inverted";
+      s.reason = std::to_string(r.inverted) + " element(s) of body '" + body.name +
+                 "' inverted (non-positive volume) and erosion is off";
+      return false;
+    }
+  }
+  return true;
+}
+
+// Stage 5: viscous absorbing boundaries, f = -A (rho c_p v_n n + rho c_s v_t)
+// on each node's share A of a boundary face (Lysmer & Kuhlemeyer 1969).
+void Simulation::Impl::boundary_forces() {
+  NodeSet& n = model.nodes;
+  double power = 0.0;
+  for (const AbsorbingFace& face : model.absorbing) {
+    Vec3 normal;
+    double area;
+    if (face.count == 2) {  // axisymmetric segment a -> b, outward normal on the right
+      const Vec3 a = n.x[face.nodes[0]], b = n.x[face.nodes[1]];
+      const Vec3 d = b - a;
+      const double len = d.norm();
+      if (len <= 0.0) continue;
+      normal = Vec3(d.y(), -d.x(), 0.0) / len;
+      area = len * 0.5 * (a.x() + b.x());  // per radian
+    } else {
+      const Vec3& x0 = n.x[face.nodes[0]];
+      const Vec3& x1 = n.x[face.nodes[1]];
+      const Vec3& x2 = n.x[face.nodes[2]];
+      const Vec3& x3 = n.x[face.nodes[3]];
+      const Vec3 av = 0.5 * (x2 - x0).cross(x3 - x1);
+      area = av.norm();
+      if (area <= 0.0) continue;
+      normal = av / area;
+    }
+    const double share = area / face.count;
+    for (int k = 0; k < face.count; ++k) {
+      const int i = face.nodes[k];
+      const Vec3& v = n.v[i];
+      const double vn = v.dot(normal);
+      const Vec3 f = -share * (face.rho_cp * vn * normal + face.rho_cs * (v - vn * normal));
+      n.f[i] += f;
+      power += f.dot(v);
+    }
+  }
+  energy.absorbed -= power * dt_half * scale();
+}
+
+void Simulation::Impl::compute_energies() {
+  const NodeSet& n = model.nodes;
+  double kinetic = 0.0;
+  for (std::size_t i = 0; i < n.size(); ++i) kinetic += 0.5 * n.mass[i] * n.v[i].squaredNorm();
+  double internal = 0.0, plastic = 0.0;
+  for (const FeBody& b : model.bodies) {
+    internal += fe_internal_energy(b);
+    for (std::size_t e = 0; e < b.num_elements(); ++e) {
+      if (b.active[e]) plastic += b.volume0[e] * b.state[e].plastic_work;
+    }
+  }
+  energy.kinetic = kinetic * scale();
+  energy.internal = internal * scale();
+  energy.plastic_work = plastic * scale();
+  const double total = energy.kinetic + energy.internal + energy.hourglass +
+                       energy.artificial_viscosity + energy.absorbed + energy.eroded;
+  const double reference = std::max(energy.initial_total, 1e-300);
+  energy.balance_error =
+      (total - energy.initial_total - energy.external_work - energy.wall_work) / reference;
+}
+
+std::optional<std::pair<RunOutcome, std::string>> Simulation::Impl::checks(
+    const std::chrono::steady_clock::time_point& start, std::string& stop_reason) {
+  const TimeSpec& ts = scene.time;
+  if (!std::isfinite(energy.kinetic) || !std::isfinite(energy.internal) ||
+      !std::isfinite(dt_stable)) {
+    stop_reason = "non-finite";
+    return std::pair{RunOutcome::unstable,
+                     "non-finite state (NaN or infinity) at step " + std::to_string(step)};
+  }
+  const double dt_floor = ts.min_time_step > 0.0 ? ts.min_time_step : 1e-6 * dt_first;
+  if (ts.stability_coefficient * dt_stable < dt_floor) {
+    stop_reason = "time-step-collapse";
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "time step collapsed to %.3e s (floor %.3e s)",
+                  ts.stability_coefficient * dt_stable, dt_floor);
+    return std::pair{RunOutcome::unstable, std::string(buf)};
+  }
+  if (std::abs(energy.balance_error) > ts.energy_balance_limit && energy.initial_total > 0.0) {
+    stop_reason = "energy-balance";
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "energy balance error %.3g above its limit %.3g",
+                  energy.balance_error, ts.energy_balance_limit);
+    return std::pair{RunOutcome::unstable, std::string(buf)};
+  }
+  if (options.cancel && options.cancel->load()) {
+    stop_reason = "cancelled";
+    return std::pair{RunOutcome::cancelled, std::string("cancelled")};
+  }
+  if (ts.wall_clock_limit > 0.0) {
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (wall > ts.wall_clock_limit) {
+      stop_reason = "wall-clock-limit";
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "wall-clock limit of %.1f s reached at t = %.3e s",
+                    ts.wall_clock_limit, time);
+      return std::pair{RunOutcome::timed_out, std::string(buf)};
+    }
+  }
+  if (step >= ts.max_steps) {
+    stop_reason = "step-limit";
+    return std::pair{RunOutcome::timed_out,
+                     "step limit of " + std::to_string(ts.max_steps) + " reached"};
+  }
+  return std::nullopt;
+}
+
+RunSummary Simulation::run() {
+  Impl& s = *impl_;
+  RunSummary summary;
+  summary.scene = s.scene.name;
+  const auto start = std::chrono::steady_clock::now();
+#ifdef _OPENMP
+  if (s.options.threads > 0) omp_set_num_threads(s.options.threads);
+  summary.threads = omp_get_max_threads();
+#endif
+  try {
+    s.open_output();
+    // Initial state: forces of the initial velocities on absorbing faces.
+    NodeSet& n = s.model.nodes;
+    std::fill(n.f.begin(), n.f.end(), Vec3::Zero());
+    s.dt_stable = initial_time_step_bound(s.model);
+    s.dt_half = s.scene.time.stability_coefficient * s.dt_stable;
+    s.dt_first = s.dt_half;
+    s.compute_energies();
+    s.energy.initial_total = s.energy.kinetic + s.energy.internal;
+    s.energy.balance_error = 0.0;
+    s.write_history();
+    s.write_snapshot();
+
+    const double end_time = s.scene.time.end_time;
+    bool stopped = false;
+    while (!stopped) {
+      if (s.time + s.dt_half > end_time) s.dt_half = end_time - s.time;
+      s.update_velocities(s.step == 0);
+      s.predict_positions();
+      if (!s.internal_forces(summary)) {
+        stopped = true;
+      } else {
+        s.boundary_forces();
+      }
+      s.time += s.dt_half;
+      ++s.step;
+      s.compute_energies();
+      if (!stopped) {
+        if (auto stop = s.checks(start, summary.stop_reason)) {
+          summary.outcome = stop->first;
+          summary.reason = stop->second;
+          stopped = true;
+        }
+      }
+      const bool at_end = s.time >= end_time * (1.0 - 1e-12);
+      if (at_end && !stopped) {
+        summary.outcome = RunOutcome::finished;
+        summary.stop_reason = "end-time";
+        summary.reason = "reached the end time";
+        stopped = true;
+      }
+      if (stopped || s.time >= s.next_history_time) s.write_history();
+      s.write_snapshot();
+      if (stopped && (s.next_snapshot < s.scene.output.snapshot_times.size())) {
+        // Always leave the final state in the file.
+        s.next_snapshot = s.scene.output.snapshot_times.size();
+      }
+      s.dt_half_prev = s.dt_half;
+      s.dt_half = s.scene.time.stability_coefficient * s.dt_stable;
+      if (!s.options.quiet && s.step % 1000 == 0) {
+        std::fprintf(stderr, "step %lld t = %.4e s dt = %.3e s E_err = %.2e\n", s.step, s.time,
+                     s.dt_half, s.energy.balance_error);
+      }
+    }
+    s.fill_summary(summary);
+    if (s.file) {
+      s.file->set_attribute("outcome", to_string(summary.outcome));
+      s.file->set_attribute("reason", summary.reason);
+      s.file->set_attribute("stop_reason", summary.stop_reason);
+      s.file->set_attribute("steps", summary.steps);
+      s.file->set_attribute("end_time", summary.end_time, "s");
+      s.file->close();
+    }
+  } catch (const std::exception& e) {
+    s.fill_summary(summary);
+    summary.outcome = RunOutcome::error;
+    summary.stop_reason = "error";
+    summary.reason = e.what();
+  }
+  summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+void Simulation::Impl::fill_summary(RunSummary& s) const {
+  s.steps = step;
+  s.end_time = time;
+  s.energy = energy;
+  s.bodies.clear();
+  const NodeSet& n = model.nodes;
+  for (const FeBody& b : model.bodies) {
+    BodySummary bs;
+    bs.name = b.name;
+    bs.elements = static_cast<long long>(b.num_elements());
+    bs.nodes = static_cast<long long>(b.node_end - b.node_begin);
+    Vec3 momentum = Vec3::Zero();
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = -lo;
+    double mass = 0.0, kinetic = 0.0;
+    for (std::size_t i = b.node_begin; i < b.node_end; ++i) {
+      if (n.mass[i] <= 0.0) continue;
+      mass += n.mass[i];
+      momentum += n.mass[i] * n.v[i];
+      kinetic += 0.5 * n.mass[i] * n.v[i].squaredNorm();
+      lo = lo.cwiseMin(n.x[i]);
+      hi = hi.cwiseMax(n.x[i]);
+    }
+    bs.mass = mass * scale();
+    bs.kinetic_energy = kinetic * scale();
+    bs.centroid_velocity = centroid_velocity(model, momentum, mass);
+    if (model.axisymmetric) {
+      // The body of revolution spans -r_max..r_max in x and y.
+      bs.extent_min = Vec3(-hi.x(), -hi.x(), lo.y());
+      bs.extent_max = Vec3(hi.x(), hi.x(), hi.y());
+    } else {
+      bs.extent_min = lo;
+      bs.extent_max = hi;
+    }
+    for (std::size_t e = 0; e < b.num_elements(); ++e) {
+      if (!b.active[e]) {
+        ++bs.eroded_elements;
+        continue;
+      }
+      bs.max_plastic_strain = std::max(bs.max_plastic_strain, b.state[e].eps_p);
+      bs.max_temperature = std::max(bs.max_temperature, b.state[e].T);
+    }
+    s.bodies.push_back(bs);
+  }
+  s.hdf5_path = h5_path.empty() ? std::string() : h5_path.string();
+  s.xdmf_path = h5_path.empty() ? std::string()
+                                : std::filesystem::path(h5_path).replace_extension(".xmf").string();
+}
+
+}  // namespace splat

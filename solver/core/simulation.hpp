@@ -1,0 +1,56 @@
+// The explicit time loop: builds bodies from a Scene, advances them by
+// central differences and ends every run with an outcome and a reason.
+//
+// Stages of one step (README "Time step"):
+//   1. update       a_n = f_n / m; v_{n+1/2} = v_{n-1/2} + dt_n a_n; velocity
+//                   constraints (fixed, symmetry, axis, prescribed); rigid walls
+//   2. predict      x_{n+1} = x_n + dt_{n+1/2} v_{n+1/2}
+//   3. contact      (contact and adhesion arrive with a later issue)
+//   4. internal     element loop: velocity gradient, material update, bulk
+//      forces       viscosity, hourglass control, nodal forces, CFL bound
+//   5. boundary     absorbing-boundary forces
+//      forces
+//   6. diagnostics  energies, histories, snapshots, stop checks; next dt
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "solver/core/run_summary.hpp"
+#include "solver/fe/fe_body.hpp"
+#include "solver/scene/scene.hpp"
+
+namespace splat {
+
+struct SimulationOptions {
+  std::filesystem::path output_dir;  // empty: no result file
+  int threads = 0;                   // 0: OpenMP default
+  const std::atomic<bool>* cancel = nullptr;
+  bool quiet = true;  // no progress lines on stderr
+};
+
+class Simulation {
+ public:
+  // Builds the model; throws InputError when the scene cannot be modelled.
+  Simulation(const Scene& scene, nlohmann::json resolved_scene, SimulationOptions options);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // Runs to the end time or to the first stop condition. Never throws.
+  RunSummary run();
+
+  const NodeSet& nodes() const;
+  const std::vector<FeBody>& bodies() const;
+  bool axisymmetric() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace splat

@@ -1,0 +1,55 @@
+// Private state of Simulation, shared by simulation.cpp (time loop) and
+// simulation_output.cpp (result file). Not part of the solver's interface.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "solver/core/model_builder.hpp"
+#include "solver/core/simulation.hpp"
+#include "solver/io/result_file.hpp"
+
+namespace splat {
+
+struct Simulation::Impl {
+  Scene scene;
+  nlohmann::json resolved;
+  SimulationOptions options;
+  Model model;
+
+  // Running state.
+  double time = 0.0;
+  long long step = 0;
+  double dt_half = 0.0;       // dt_{n+1/2}, s
+  double dt_half_prev = 0.0;  // dt_{n-1/2}, s
+  double dt_stable = 0.0;     // last CFL bound over all bodies, s
+  double dt_first = 0.0;      // first step, s
+  EnergyBudget energy;
+  int max_return_iterations = 0;
+  std::size_t next_snapshot = 0;
+  double next_history_time = 0.0;
+  std::unique_ptr<ResultFile> file;
+  std::filesystem::path h5_path;
+
+  // Energy factor: axisymmetric quantities are per radian.
+  double scale() const { return model.axisymmetric ? 2.0 * std::numbers::pi : 1.0; }
+
+  void update_velocities(bool first);
+  void predict_positions();
+  bool internal_forces(RunSummary& s);
+  void boundary_forces();
+  void compute_energies();
+  std::optional<std::pair<RunOutcome, std::string>> checks(
+      const std::chrono::steady_clock::time_point& start, std::string& stop_reason);
+  void open_output();
+  void write_history();
+  void write_snapshot();
+  void fill_summary(RunSummary& s) const;
+};
+
+}  // namespace splat

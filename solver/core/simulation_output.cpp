@@ -1,0 +1,131 @@
+// Result-file side of the time loop: histories every history interval,
+// field snapshots at the requested times.
+#include <cmath>
+
+#include "solver/build_info.hpp"
+#include "solver/core/model_builder.hpp"
+#include "solver/core/simulation_impl.hpp"
+#include "solver/io/result_file.hpp"
+#include "solver/material/elasticity.hpp"
+
+namespace splat {
+
+void Simulation::Impl::open_output() {
+  if (options.output_dir.empty()) return;
+  std::filesystem::create_directories(options.output_dir);
+  h5_path = options.output_dir / (scene.name + ".h5");
+  std::vector<BodyTopology> topo;
+  const int dim = model.axisymmetric ? 2 : 3;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const FeBody& body = model.bodies[b];
+    topo.push_back({body.name, body.kind == ElementKind::hex8 ? CellKind::hex8 : CellKind::quad4,
+                    dim, model.meshes[b].connectivity, body.node_end - body.node_begin});
+  }
+  std::vector<std::pair<std::string, std::string>> columns = {{"time", "s"},
+                                                              {"dt", "s"},
+                                                              {"kinetic", "J"},
+                                                              {"internal", "J"},
+                                                              {"plastic_work", "J"},
+                                                              {"hourglass", "J"},
+                                                              {"artificial_viscosity", "J"},
+                                                              {"absorbed", "J"},
+                                                              {"eroded", "J"},
+                                                              {"wall_work", "J"},
+                                                              {"external_work", "J"},
+                                                              {"balance_error", "-"}};
+  for (const FeBody& body : model.bodies) {
+    for (const char* c : {"_vx", "_vy", "_vz"}) columns.emplace_back(body.name + c, "m/s");
+    columns.emplace_back(body.name + "_kinetic", "J");
+  }
+  file = std::make_unique<ResultFile>(h5_path, std::move(topo), std::move(columns));
+  file->set_attribute("solver_version", std::string(version()));
+  file->set_attribute("git_commit", std::string(git_commit()));
+  file->set_attribute("scene_name", scene.name);
+  file->set_attribute("scene", resolved.dump());
+  file->set_attribute("frame", model.axisymmetric
+                                   ? "axisymmetric: coordinates (r, z); energies over 2 pi"
+                                   : "3D: coordinates (x, y, z)");
+}
+
+void Simulation::Impl::write_history() {
+  if (scene.output.history_interval > 0.0) {
+    while (next_history_time <= time) next_history_time += scene.output.history_interval;
+  }
+  if (!file) return;
+  std::vector<double> row = {time,
+                             dt_half,
+                             energy.kinetic,
+                             energy.internal,
+                             energy.plastic_work,
+                             energy.hourglass,
+                             energy.artificial_viscosity,
+                             energy.absorbed,
+                             energy.eroded,
+                             energy.wall_work,
+                             energy.external_work,
+                             energy.balance_error};
+  const NodeSet& n = model.nodes;
+  for (const FeBody& body : model.bodies) {
+    Vec3 momentum = Vec3::Zero();
+    double mass = 0.0, kinetic = 0.0;
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      mass += n.mass[i];
+      momentum += n.mass[i] * n.v[i];
+      kinetic += 0.5 * n.mass[i] * n.v[i].squaredNorm();
+    }
+    const Vec3 vc = centroid_velocity(model, momentum, mass);
+    row.insert(row.end(), {vc.x(), vc.y(), vc.z(), kinetic * scale()});
+  }
+  file->append_history(row);
+}
+
+void Simulation::Impl::write_snapshot() {
+  const std::vector<double>& times = scene.output.snapshot_times;
+  if (next_snapshot >= times.size() || time < times[next_snapshot] * (1.0 - 1e-12)) return;
+  while (next_snapshot < times.size() && times[next_snapshot] <= time * (1.0 + 1e-12)) {
+    ++next_snapshot;
+  }
+  if (!file) return;
+  const int dim = model.axisymmetric ? 2 : 3;
+  const NodeSet& n = model.nodes;
+  // Storage for every body's arrays must outlive the views.
+  struct Arrays {
+    std::vector<double> coords, velocity, eps_p, temperature, damage, yield, mises, pressure;
+    std::vector<int> active;
+  };
+  std::vector<Arrays> arrays(model.bodies.size());
+  std::vector<BodySnapshot> snaps;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const FeBody& body = model.bodies[b];
+    Arrays& a = arrays[b];
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      for (int c = 0; c < dim; ++c) {
+        a.coords.push_back(n.x[i][c]);
+        a.velocity.push_back(n.v[i][c]);
+      }
+    }
+    for (std::size_t e = 0; e < body.num_elements(); ++e) {
+      const PointState& st = body.state[e];
+      a.eps_p.push_back(st.eps_p);
+      a.temperature.push_back(st.T);
+      a.damage.push_back(st.D);
+      a.yield.push_back(st.sigma_y);
+      a.mises.push_back(von_mises(st.s));
+      a.pressure.push_back(st.p);
+      a.active.push_back(body.active[e]);
+    }
+    BodySnapshot s;
+    s.body = body.name;
+    s.coordinates = a.coords;
+    s.fields = {
+        {"velocity", "m/s", false, dim, a.velocity},  {"plastic_strain", "-", true, 1, a.eps_p},
+        {"temperature", "K", true, 1, a.temperature}, {"damage", "-", true, 1, a.damage},
+        {"yield_stress", "Pa", true, 1, a.yield},     {"von_mises", "Pa", true, 1, a.mises},
+        {"pressure", "Pa", true, 1, a.pressure}};
+    s.active_cells = a.active;
+    snaps.push_back(std::move(s));
+  }
+  file->write_snapshot(time, snaps);
+}
+
+}  // namespace splat

@@ -1,0 +1,113 @@
+// What the user asked for: a plain description read from a scene JSON
+// document (schemas/scene.schema.json, parsed by solver/input/scene_io.hpp).
+// The solver builds its own state from it and never changes it. SI units.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solver/common/types.hpp"
+#include "solver/material/material.hpp"
+
+namespace splat {
+
+enum class GeometryType { sphere, cylinder, box, half_disc, rectangle };
+
+// One primitive; which fields matter depends on the type.
+//  sphere:    radius, centre                (fe-axisym: centre on the axis)
+//  cylinder:  radius, z_min, z_max; axis z through x = y = 0
+//  box:       lo, hi                        (fe-hex only)
+//  half_disc: radius, centre.z()            (fe-axisym only)
+//  rectangle: radius (= r_max), z_min, z_max (fe-axisym only)
+struct Geometry {
+  GeometryType type = GeometryType::sphere;
+  double radius = 0.0;                        // m
+  Vec3 centre = Vec3::Zero();                 // m
+  double z_min = 0.0, z_max = 0.0;            // m
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // m
+};
+
+enum class Discretization { fe_axisym, fe_hex, sph };
+enum class SectorKind { full, half, quarter };  // half: y >= 0; quarter: x >= 0, y >= 0
+
+struct GradingSpec {
+  bool enabled = false;
+  Vec3 focus = Vec3::Zero();  // m, scene coordinates (axisymmetric: (r, 0, z))
+  double ratio = 1.0;         // element size growth per element away from the focus, -
+};
+
+enum class HourglassType { viscous, stiffness };
+
+struct BodySpec {
+  std::string name;
+  Material material;
+  Geometry geometry;
+  Discretization discretization = Discretization::fe_axisym;
+  // Resolution: elements across the characteristic length (radius for
+  // spheres, cylinders and half-discs; the smallest side for boxes and
+  // rectangles) or, if > 0, the element size.
+  int elements_across = 0;    // -
+  double element_size = 0.0;  // m
+  SectorKind sector = SectorKind::full;
+  GradingSpec grading;
+  Vec3 velocity = Vec3::Zero();  // initial velocity, m/s
+  double temperature = 300.0;    // initial temperature, K
+  unsigned long long seed = 1;   // seed of the random initial damage
+  ModelSwitches switches;
+  HourglassType hourglass = HourglassType::viscous;
+  double hourglass_coefficient = 0.1;  // -
+  double q_linear = 0.06;              // bulk viscosity, linear coefficient, -
+  double q_quadratic = 1.5;            // bulk viscosity, quadratic coefficient, -
+  bool erosion = false;  // remove elements at D_max, on inversion, or below min_time_step
+  double erosion_min_time_step = 0.0;  // s; 0 = off
+};
+
+enum class BoundaryType { fixed, symmetry, velocity, absorbing };
+
+// A condition on the nodes of one body that carry a boundary bit (mesh.hpp):
+// "x_min", "x_max", "y_min", "y_max", "z_min", "z_max", "curved"; in 2D
+// "axis" = x_min, "outer" = x_max, "bottom" = y_min, "top" = y_max.
+struct BoundarySpec {
+  std::string body;
+  std::uint32_t on = 0;  // BoundaryBit mask (any bit matches)
+  BoundaryType type = BoundaryType::fixed;
+  Vec3 velocity = Vec3::Zero();  // m/s, for type velocity
+};
+
+enum class InteractionType { rigid_wall };
+
+struct InteractionSpec {
+  InteractionType type = InteractionType::rigid_wall;
+  std::vector<std::string> bodies;  // empty = all bodies
+  Vec3 point = Vec3::Zero();        // a point of the wall plane, m
+  Vec3 normal = Vec3(0, 0, 1);      // unit normal pointing into the allowed side, -
+};
+
+struct TimeSpec {
+  double end_time = 0.0;               // s
+  double stability_coefficient = 0.9;  // fraction of the CFL bound, -
+  long long max_steps = 10'000'000;    // -
+  double min_time_step = 0.0;          // s; below it the run ends `unstable`; 0 = 1e-6 of the first
+  double wall_clock_limit = 0.0;       // s; 0 = none
+  double energy_balance_limit = 0.05;  // |error| / initial energy above which the run ends unstable
+};
+
+struct OutputSpec {
+  std::vector<double> snapshot_times;  // s
+  double history_interval = 0.0;       // s; 0 = every step
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::vector<BodySpec> bodies;
+  std::vector<BoundarySpec> boundaries;
+  std::vector<InteractionSpec> interactions;
+  TimeSpec time;
+  OutputSpec output;
+};
+
+}  // namespace splat
