@@ -11,10 +11,10 @@ cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DSPLAT_BUILD_BENCHMARKS
 
 # file | literal text | replacement | gtest filter that must fail
 mutations=(
-  "solver/material/johnson_cook.hpp|1.0 + jc.C * std::log(|1.0 + 0.5 * jc.C * std::log(|uniaxial_johnson_cook.*"
+  "solver/material/johnson_cook.cpp|rate += jc.C * std::log(x);|rate += 0.5 * jc.C * std::log(x);|uniaxial_johnson_cook.*"
   "solver/material/johnson_cook.hpp|1.0 - std::pow(t_star, jc.m)|1.0 - std::pow(t_star, 1.1 * jc.m)|uniaxial_johnson_cook.*"
-  "solver/material/johnson_cook.hpp|jc.A + jc.B * std::pow(eps_p, jc.n)|jc.A + 1.02 * jc.B * std::pow(eps_p, jc.n)|uniaxial_johnson_cook.*:simple_shear.*"
-  "solver/material/point_update.cpp|s *= (q_trial > 0.0) ? std::max(q_trial - 3.0 * G_d * dp|s *= (q_trial > 0.0) ? std::max(q_trial - 2.9 * G_d * dp|uniaxial_johnson_cook.*"
+  "solver/material/johnson_cook.cpp|std::pow(ep, jc.n)|std::pow(ep, 1.02 * jc.n)|uniaxial_johnson_cook.*:simple_shear.*"
+  "solver/material/point_update.cpp|s *= std::max(q_trial - 3.0 * G_d * dp|s *= std::max(q_trial - 2.9 * G_d * dp|uniaxial_johnson_cook.*"
   "solver/material/point_update.cpp|st.T += mc.chi * w * J_new|st.T += w * J_new|adiabatic_heating.*"
   "solver/material/point_update.cpp|eos_split(m.eos, mc.K,|eos_split(m.eos, 1.01 * mc.K,|elastic_uniaxial_strain.*"
   "solver/material/point_update.cpp|Mat3 s = st.s + 2.0 * G_d|Mat3 s = st.s + 2.02 * G_d|elastic_uniaxial_strain.*:uniaxial_johnson_cook.elastic*"
@@ -22,7 +22,8 @@ mutations=(
   "solver/material/damage.hpp|d.D2 * std::exp(d.D3 * triaxiality)|d.D2 * std::exp(-d.D3 * triaxiality)|jc_ductile_damage.*"
   "solver/material/damage.hpp|return std::max(lo + (hi - lo) * w|return std::max(hi + (lo - hi) * w|shear_failure_damage.*"
   "solver/material/damage.hpp|(k_s * p + q) / tau_max|(k_s * p + q) / (1.05 * tau_max)|shear_failure_damage.*"
-  "solver/material/elasticity.hpp|(Mat3::Identity() - half).inverse() * (Mat3::Identity() + half)|(Mat3::Identity() + half).inverse() * (Mat3::Identity() - half)|simple_shear.*"
+  "solver/material/elasticity.hpp|(Mat3::Identity() - half).inverse() * (Mat3::Identity() + half)|(Mat3::Identity() + half).inverse() * (Mat3::Identity() - half)|objective_rate.*"
+  "solver/material/elasticity.hpp|const Mat3 half = 0.5 * dt * W;|const Mat3 half = 0.45 * dt * W;|objective_rate.*:simple_shear.*"
 )
 
 status=0
