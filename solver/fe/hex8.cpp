@@ -98,15 +98,28 @@ Hex8Vectors hex8_forces(const Mat3& sigma, const Hex8Geometry& g, const Hex8Mode
                         const std::array<Vec3, 4>& Q) {
   // f_a = -V sigma b_a - sum_k (Gamma^k_a - 8 h_k . b_a) Q^k
   //     = sum_{u=1..6} s_u(a) F_u - sum_k s_{3+k}(a) Q^k,
-  // F_u = -(sigma - M / V) g_u / 8, M = 8 sum_k Q^k (x) h_k.
-  Mat3 M = Q[0] * x.c[4].transpose();
-  for (int k = 1; k < 4; ++k) M.noalias() += Q[k] * x.c[4 + k].transpose();
-  const Mat3 S = 0.125 * sigma - M / g.volume;
+  // F_u = -S g_u, S = (sigma - M / V) / 8, M = 8 sum_k Q^k (x) h_k.
+  // Written out in scalars: Eigen's mixed 2+1 packets for 3-vectors cost
+  // store-forwarding stalls here.
+  const double inv_v = 1.0 / g.volume;
+  double S[3][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const double m =
+          Q[0][i] * x.c[4][j] + Q[1][i] * x.c[5][j] + Q[2][i] * x.c[6][j] + Q[3][i] * x.c[7][j];
+      S[i][j] = 0.125 * sigma(i, j) - m * inv_v;
+    }
+  }
   Hex8Modes F;
-  F.c[0].setZero();
-  F.c[7] = -Q[3];
-  for (int u = 1; u <= 6; ++u) F.c[u].noalias() = -(S * g.g[u - 1]);
-  for (int k = 0; k < 3; ++k) F.c[4 + k] -= Q[k];
+  for (int i = 0; i < 3; ++i) {
+    F.c[0][i] = 0.0;
+    for (int u = 1; u <= 6; ++u) {
+      const Vec3& gu = g.g[u - 1];
+      F.c[u][i] = -(S[i][0] * gu[0] + S[i][1] * gu[1] + S[i][2] * gu[2]);
+    }
+    for (int k = 0; k < 3; ++k) F.c[4 + k][i] -= Q[k][i];
+    F.c[7][i] = -Q[3][i];
+  }
   return hex8_nodal(F);
 }
 
