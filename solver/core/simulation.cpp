@@ -275,11 +275,9 @@ RunSummary Simulation::run() {
         stopped = true;
       }
       if (stopped || s.time >= s.next_history_time) s.write_history();
-      s.write_snapshot();
-      if (stopped && (s.next_snapshot < s.scene.output.snapshot_times.size())) {
-        // Always leave the final state in the file.
-        s.next_snapshot = s.scene.output.snapshot_times.size();
-      }
+      // A run that stops before its last requested snapshot still leaves its
+      // final state in the file.
+      s.write_snapshot(stopped);
       s.dt_half_prev = s.dt_half;
       s.dt_half = s.scene.time.stability_coefficient * s.dt_stable;
       if (!s.options.quiet && s.step % 1000 == 0) {

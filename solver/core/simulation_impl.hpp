@@ -48,7 +48,7 @@ struct Simulation::Impl {
       const std::chrono::steady_clock::time_point& start, std::string& stop_reason);
   void open_output();
   void write_history();
-  void write_snapshot();
+  void write_snapshot(bool final_state = false);
   void fill_summary(RunSummary& s) const;
 };
 

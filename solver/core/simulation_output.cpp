@@ -79,11 +79,19 @@ void Simulation::Impl::write_history() {
   file->append_history(row);
 }
 
-void Simulation::Impl::write_snapshot() {
+// Writes a snapshot when the time has reached the next requested snapshot
+// time, or, with final_state, whenever a requested one is still pending (the
+// run stopped early).
+void Simulation::Impl::write_snapshot(bool final_state) {
   const std::vector<double>& times = scene.output.snapshot_times;
-  if (next_snapshot >= times.size() || time < times[next_snapshot] * (1.0 - 1e-12)) return;
-  while (next_snapshot < times.size() && times[next_snapshot] <= time * (1.0 + 1e-12)) {
-    ++next_snapshot;
+  if (next_snapshot >= times.size()) return;
+  if (final_state) {
+    next_snapshot = times.size();
+  } else {
+    if (time < times[next_snapshot] * (1.0 - 1e-12)) return;
+    while (next_snapshot < times.size() && times[next_snapshot] <= time * (1.0 + 1e-12)) {
+      ++next_snapshot;
+    }
   }
   if (!file) return;
   const int dim = model.axisymmetric ? 2 : 3;
