@@ -158,7 +158,10 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
     } else if (link == LinkState::active) {
       const double eps_v = 1e-12 * (s.V0 + std::abs(V) + std::abs(v));
       const double eps_x = 1e-9 * (std::abs(X) + std::abs(x) + s.V0 * dt);
-      if (std::abs(g_dot) <= eps_v && std::abs(gap) <= eps_x) {
+      // k = 0: nothing acts on a held pair, whatever its gap; k > 0: the
+      // joint oscillation needs compression half the time, which only the
+      // contact (gap 0) can carry.
+      if (std::abs(g_dot) <= eps_v && (s.k == 0.0 || std::abs(gap) <= eps_x)) {
         bool settled = s.k == 0.0;
         if (!settled) {
           // Joint oscillation of M + m on the spring: the link must pull M
