@@ -156,6 +156,20 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
         decided = true;
       }
     } else if (link == LinkState::active) {
+      // With k > 0 the link's work is taken from the mechanical energy (the
+      // spring couples M to the frame, so all of it may be converted); a
+      // remaining budget above it can never be spent: the link holds for
+      // good, though the masses may chatter for a long time before they
+      // settle. (k = 0 settles within mu V0 / F_cap, below.)
+      const double convertible = row.kinetic + row.spring;
+      if (s.k > 0.0 && fig.work_budget - W > convertible * (1.0 + 1e-6)) {
+        run.outcome = RunOutcome::stick;
+        run.stop_reason = "budget-exceeds-energy";
+        run.reason =
+            "the link's remaining adhesion budget exceeds the mechanical energy left: it "
+            "can never let go";
+        decided = true;
+      }
       const double eps_v = 1e-12 * (s.V0 + std::abs(V) + std::abs(v));
       const double eps_x = 1e-9 * (std::abs(X) + std::abs(x) + s.V0 * dt);
       // k = 0: nothing acts on a held pair, whatever its gap; k > 0: the
@@ -170,7 +184,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
           const double A = std::sqrt(x * x + v_joint * v_joint * (s.M + s.m) / s.k);
           settled = s.M * s.k * A / (s.M + s.m) <= F_cap * (1.0 - 1e-9);
         }
-        if (settled) {
+        if (settled && !decided) {
           run.outcome = RunOutcome::stick;
           run.stop_reason = "settled";
           run.reason =

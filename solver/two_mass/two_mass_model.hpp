@@ -23,7 +23,10 @@
 //               reach of m's oscillation); stick: the link holds the pair in
 //               contact and can carry the largest tension the remaining
 //               motion needs (k = 0: none; k > 0: M k A / (M + m) for the
-//               joint oscillation of amplitude A), so nothing will change.
+//               joint oscillation of amplitude A), so nothing will change;
+//               or (k > 0) the remaining budget exceeds all the mechanical
+//               energy left, so the link can never let go (the summary's
+//               final velocities are then those at that moment).
 // For k = 0 the separation velocity is exact for any dt (momentum and the
 // energy-exact work rule); the release time converges at first order. For
 // k > 0 everything converges at first order (impact inside a step).
