@@ -42,6 +42,14 @@
 // The tension cap limits I <= sigma_c A dt. Without a cap (Griffith form)
 // the multiplier itself holds the pair: I = I_hold.
 //
+// Griffith form under smooth loading: a holding impulse that only cancels
+// the opening one step of smooth forces would produce is charged
+// dW = g_free^2 / (2h) = O(dt^2) per step, so a held link under a steady pull
+// spends its budget at a rate O(dt) that vanishes as dt -> 0 (a rigid holding
+// constraint does no work). In the limit the uncapped link dissipates only on
+// velocity jumps (impacts); the two-mass model shows it (k > 0, no cap:
+// the answer is the free-mass one).
+//
 // Several pairs (the contact solver): H couples the pairs, so "g_free" of one
 // pair depends on the impulses of its neighbours. The contact stage uses the
 // diagonal (projected Gauss-Seidel) approximation: for pair i, g_free is the
