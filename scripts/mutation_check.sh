@@ -29,6 +29,8 @@ mutations=(
   "solver/adhesion/cohesive_law.cpp|const double I_cap = max_tension(p, area) * dt;|const double I_cap = 1.05 * max_tension(p, area) * dt;|two_mass_adhesion.spring*"
   "solver/two_mass/two_mass_model.cpp|constexpr double k_restitution = 1.0;|constexpr double k_restitution = 0.95;|two_mass_adhesion.free_mass*"
   "solver/two_mass/two_mass_model.cpp|double v_new = v - dt * s.k * x / s.m;|double v_new = v - dt * 1.02 * s.k * x / s.m;|two_mass_adhesion.spring*"
+  "solver/fe/fe_body.cpp|nodes.mass[body.conn[e][a]] += body.element_mass[e] / npe;|nodes.mass[body.conn[e][a]] += 1.05 * body.element_mass[e] / npe;|elastic_bar_wave_speed.*"
+  "solver/material/point_update.cpp|      0.5 * J_mid * ((sigma_old.array()|      0.45 * J_mid * ((sigma_old.array()|freely_vibrating_elastic_body.*"
 )
 
 status=0
