@@ -103,6 +103,21 @@ TEST(two_mass_adhesion, free_mass_sticks_below_the_threshold_speed) {
   }
 }
 
+// The verdict switches at the closed-form critical speed
+// V* = sqrt(2 G_c A (M + m) / (M m)) (sqrt(0.6) here), whatever the cap.
+TEST(two_mass_adhesion, free_mass_verdict_switches_at_the_critical_speed) {
+  const double V_star = std::sqrt(2.0 * 0.2 * 3.0 / 2.0);
+  for (double F : {0.05, 5.0, k_inf}) {
+    exact::TwoMassCase c = thesis_case(0.0, F);
+    c.V0 = V_star * (1.0 - 1e-3);
+    EXPECT_EQ(run(c, 1e-3).outcome, RunOutcome::stick) << F;
+    c.V0 = V_star * (1.0 + 1e-3);
+    const TwoMassRun r = run(c, 1e-3);
+    EXPECT_EQ(r.outcome, RunOutcome::rebound) << F;
+    EXPECT_NEAR(V_release(r), exact::two_mass_closed_form_k0(c).V_release, 1e-12) << F;
+  }
+}
+
 // The reference itself: with a vanishing spring the event-driven solution
 // must fall back on the closed form.
 TEST(two_mass_adhesion, event_driven_reference_reduces_to_the_closed_form) {
