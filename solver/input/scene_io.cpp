@@ -742,6 +742,11 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
     scene.time = parse_time(doc.at("time"));
     scene.two_mass = parse_two_mass(*tm, scene.time, problems);
     scene.output = parse_output(member_or_empty(doc, "output"), scene.time.end_time, problems);
+    if (!scene.output.snapshot_times.empty()) {
+      problems.add("/output",
+                   "a two_mass scene has no field snapshots (its histories are in the "
+                   "result file); remove snapshot_times / snapshot_count");
+    }
     if (!problems.list.empty()) throw InputError(std::move(problems.list));
     loaded.resolved = scene_to_resolved_json(scene);
     return loaded;
