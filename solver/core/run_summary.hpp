@@ -32,7 +32,9 @@ struct EnergyBudget {
   double eroded = 0.0;                // kinetic + internal energy of eroded elements
   double wall_work = 0.0;             // work of rigid walls on the bodies (<= 0)
   double external_work = 0.0;         // work of prescribed velocities and other constraints
-  double balance_error = 0.0;         // (total now - initial - external - wall) / initial, -
+  double contact_work = 0.0;    // work of contact forces on the bodies (<= 0 without adhesion)
+  double contact_stored = 0.0;  // energy in penalty contact springs now (part of -contact_work)
+  double balance_error = 0.0;   // (total now - initial - external - wall - contact) / initial, -
 };
 
 struct BodySummary {
@@ -49,6 +51,23 @@ struct BodySummary {
   Vec3 extent_max = Vec3::Zero();   // m
 };
 
+// One contact interface (solver/contact/contact_interface.hpp).
+struct InterfaceSummary {
+  std::string master, slave;
+  std::string method;  // lagrange | penalty
+  double friction = 0.0;
+  double work = 0.0;                   // J, work of the contact forces on the bodies
+  double stored = 0.0;                 // J, penalty springs at the end
+  double dissipated = 0.0;             // J, -work - stored
+  long long pairs_in_contact = 0;      // at the end
+  long long max_pairs_in_contact = 0;  // over the run
+  long long nodes_ever_in_contact = 0;
+  int max_solver_iterations = 0;
+  double max_solver_residual = 0.0;  // m/s
+  long long unconverged_solves = 0;
+  double max_penetration = 0.0;  // m
+};
+
 struct RunSummary {
   std::string scene;
   RunOutcome outcome = RunOutcome::finished;
@@ -60,6 +79,7 @@ struct RunSummary {
   int threads = 1;
   EnergyBudget energy;
   std::vector<BodySummary> bodies;
+  std::vector<InterfaceSummary> interfaces;
   std::string hdf5_path;  // empty when no file was written
   std::string xdmf_path;
 };
