@@ -54,7 +54,7 @@ double face_size(const ContactSurface& s, int f, const std::vector<Vec3>& x);
 struct SearchSettings {
   double capture_depth = 0.5;       // deepest gap accepted, fraction of the face size, -
   double search_margin = 0.1;       // largest gap accepted, fraction of the face size, -
-  double outside_tolerance = 1e-3;  // projection outside the face accepted, local units, -
+  double outside_tolerance = 0.05;  // projection outside the face accepted, local units, -
 };
 
 struct DetectedPair {
