@@ -104,6 +104,7 @@ Press make_press(bool three_d, int n_master) {
     p.problem.tangent2.push_back(d.geometry.tangent2);
     p.problem.b.push_back(-d.geometry.gap / dt);
     p.problem.lo.push_back(0.0);
+    p.problem.b_hold.push_back(p.problem.b.back());
     p.problem.mu.push_back(0.0);
   }
   return p;

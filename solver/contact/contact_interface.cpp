@@ -68,6 +68,7 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
     problem_.tangent2.push_back(dp.geometry.tangent2);
     problem_.b.push_back(-dp.geometry.gap / dt);
     problem_.lo.push_back(0.0);
+    problem_.b_hold.push_back(problem_.b.back());
     problem_.mu.push_back(settings_.friction);
   }
 }

@@ -70,8 +70,14 @@ ContactSolution solve_pgs(const ContactProblem& P, const ContactSolverSettings& 
     double change = 0.0;
     for (std::size_t i = 0; i < np; ++i) {
       if (!(hn[i] > 0.0)) continue;  // every node of the pair is prescribed
-      const double r = row_dot(P, i, P.normal[i], sol.dv) - P.b[i];
-      const double p_new = std::max(P.lo[i], sol.p_n[i] - r / hn[i]);
+      const double y = row_dot(P, i, P.normal[i], sol.dv);
+      const double p_contact = sol.p_n[i] - (y - P.b[i]) / hn[i];
+      double p_new = std::max(0.0, p_contact);
+      if (P.lo[i] < 0.0 && p_contact <= 0.0) {
+        // Bonded: hold the opening if that takes tension, within the cap.
+        const double p_hold = sol.p_n[i] - (y - P.b_hold[i]) / hn[i];
+        p_new = std::max(P.lo[i], std::min(p_hold, 0.0));
+      }
       const double dp = p_new - sol.p_n[i];
       if (dp != 0.0) {
         row_apply(P, i, P.normal[i], dp, sol.dv);
@@ -206,9 +212,14 @@ ContactSolution solve_contact(const ContactProblem& problem,
 double contact_violation(const ContactProblem& P, const ContactSolution& s) {
   double worst = 0.0;
   for (std::size_t i = 0; i < P.pairs(); ++i) {
-    const double r = row_dot(P, i, P.normal[i], s.dv) - P.b[i];
-    worst = std::max(worst, -r);
-    if (s.p_n[i] > P.lo[i] + 1e-300) worst = std::max(worst, std::abs(r));
+    const double y = row_dot(P, i, P.normal[i], s.dv);
+    const double r = y - P.b[i];
+    worst = std::max(worst, -r);  // penetration left
+    if (s.p_n[i] > 0.0) worst = std::max(worst, std::abs(r));
+    if (P.lo[i] < 0.0 && s.p_n[i] < 0.0) {
+      const double rh = y - P.b_hold[i];
+      if (s.p_n[i] > P.lo[i]) worst = std::max(worst, std::abs(rh));  // hold not met
+    }
   }
   return worst;
 }

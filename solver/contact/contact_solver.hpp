@@ -9,9 +9,17 @@
 // the thesis's H lambda = w (eq. 1.23-1.25) written for impulses on the
 // predicted positions. Rows are complementary: p_i >= lo_i, (H p - b)_i >= 0
 // and (p_i - lo_i) (H p - b)_i = 0. lo_i = 0 for plain contact (no tension:
-// a pair that would separate gets no force, the thesis's rebound check); a
-// bonded adhesive pair has lo_i < 0 (tension allowed down to the cap) and so
-// is held at b_i.
+// a pair that would separate gets no force, the thesis's rebound check).
+//
+// A bonded adhesive pair (lo_i < 0: tension allowed down to lo_i, -infinity
+// without a stress cap) must also not open further: its hold target
+// b_hold_i >= b_i is the C dv that keeps its gap at its value at the start of
+// the step (b_hold_i = b_i + max(g_n, 0) / dt). Its row is then
+//   p_i > 0          (H p)_i = b_i        (compression: closes the gap)
+//   p_i = 0          b_i <= (H p)_i <= b_hold_i
+//   lo_i < p_i < 0   (H p)_i = b_hold_i   (tension: holds the opening)
+//   p_i = lo_i       (H p)_i >= b_hold_i  (cap reached: opens)
+// (PGS only; the active-set solver takes unbonded rows.)
 //
 // Coulomb friction (PGS only): after each normal update the tangential
 // impulse that stops the relative tangential velocity is added and the total
@@ -36,6 +44,7 @@ struct ContactProblem {
   std::vector<Vec3> normal, tangent1, tangent2;
   std::vector<double> b;   // required C dv, m/s
   std::vector<double> lo;  // lower bound of the normal impulse, N s (0, or < 0 bonded)
+  std::vector<double> b_hold;  // bonded rows: C dv that stops the opening, m/s
   std::vector<double> mu;  // friction coefficient per pair, -
   // Per local node.
   std::vector<Vec3> inv_mass;  // 1/m per component, 0 where prescribed, 1/kg
@@ -50,6 +59,7 @@ struct ContactProblem {
     tangent2.clear();
     b.clear();
     lo.clear();
+    b_hold.clear();
     mu.clear();
   }
 };

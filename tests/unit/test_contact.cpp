@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -210,6 +211,7 @@ ContactProblem problem_of(const TwoSurfaces& t, double dt, unsigned seed) {
     P.tangent2.push_back(d.geometry.tangent2);
     P.b.push_back(-d.geometry.gap / dt);
     P.lo.push_back(0.0);
+    P.b_hold.push_back(P.b.back());
     P.mu.push_back(0.0);
   }
   return P;
@@ -258,6 +260,7 @@ TEST(ContactSolver, coulomb_friction_on_a_rigid_segment) {
     P.tangent2.push_back(Vec3::Zero());
     P.b.push_back(b);
     P.lo.push_back(0.0);
+    P.b_hold.push_back(P.b.back());
     P.mu.push_back(0.3);
     P.inv_mass = {Vec3(1 / m, 1 / m, 0), Vec3::Zero(), Vec3::Zero()};
     P.velocity = {Vec3(u, -b, 0), Vec3::Zero(), Vec3::Zero()};
@@ -266,6 +269,38 @@ TEST(ContactSolver, coulomb_friction_on_a_rigid_segment) {
     const double expected = -std::min(m * u, 0.3 * m * b);
     EXPECT_NEAR(s.p_t[0].x(), expected, 1e-12) << "u = " << u;
   }
+}
+
+// A bonded row (one node of mass m on a rigid segment): opening at rate u
+// from an open gap g_n it is held with tension -m u (no cap) or the cap; a
+// pair closing at rate u from the same open gap gets no force until the
+// gap would close.
+TEST(ContactSolver, bonded_row_holds_or_caps_the_opening) {
+  const double m = 2.0, dt = 1e-3, g_n = 1e-3;
+  auto one = [&](double rate, double lo) {
+    ContactProblem P;
+    P.node.push_back({0, 1, 2, -1, -1});
+    P.coef.push_back({1.0, -0.5, -0.5, 0.0, 0.0});
+    P.normal.push_back(Vec3(0, 1, 0));
+    P.tangent1.push_back(Vec3(1, 0, 0));
+    P.tangent2.push_back(Vec3::Zero());
+    const double g_pred = g_n + rate * dt;
+    P.b.push_back(-g_pred / dt);
+    P.b_hold.push_back(-(g_pred - g_n) / dt);
+    P.lo.push_back(lo);
+    P.mu.push_back(0.0);
+    P.inv_mass = {Vec3(1 / m, 1 / m, 0), Vec3::Zero(), Vec3::Zero()};
+    P.velocity = {Vec3(0, rate, 0), Vec3::Zero(), Vec3::Zero()};
+    const ContactSolution s = solve_contact(P, ContactSolverSettings{});
+    EXPECT_LE(s.residual, 1e-12);
+    return s.p_n[0];
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_NEAR(one(0.5, -inf), -m * 0.5, 1e-12);               // held
+  EXPECT_NEAR(one(0.5, -0.25), -0.25, 1e-12);                 // capped
+  EXPECT_EQ(one(-0.5, -inf), 0.0);                            // closing, still open at the end
+  EXPECT_NEAR(one(-2.0, -inf), m * (2.0 - g_n / dt), 1e-12);  // would penetrate: pushed
+  EXPECT_EQ(one(0.5, 0.0), 0.0);                              // not bonded: free to open
 }
 
 }  // namespace
