@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
 namespace splat {
@@ -18,6 +19,45 @@ ContactInterface::ContactInterface(std::string master_body, std::string slave_bo
       axisymmetric_(axisymmetric),
       local_(node_count, -1),
       touched_(slave_.nodes.size(), 0) {}
+
+namespace {
+
+// Elements of `body` that contain global node g (ascending).
+std::vector<int> elements_of_node(const FeBody& body, int g) {
+  std::vector<int> out;
+  const std::size_t local = static_cast<std::size_t>(g) - body.node_begin;
+  for (int k = body.node_elem_offsets[local]; k < body.node_elem_offsets[local + 1]; ++k) {
+    out.push_back(body.node_elem_entries[static_cast<std::size_t>(k)] / 8);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
+void ContactInterface::attach_bodies(const FeBody& master, const FeBody& slave) {
+  slave_elem_offsets_.assign(1, 0);
+  slave_elem_entries_.clear();
+  for (int g : slave_.nodes) {
+    const std::vector<int> e = elements_of_node(slave, g);
+    slave_elem_entries_.insert(slave_elem_entries_.end(), e.begin(), e.end());
+    slave_elem_offsets_.push_back(static_cast<int>(slave_elem_entries_.size()));
+  }
+  const int npf = master_.nodes_per_face();
+  master_face_element_.assign(master_.faces.size(), -1);
+  for (std::size_t f = 0; f < master_.faces.size(); ++f) {
+    std::vector<int> common = elements_of_node(master, master_.faces[f][0]);
+    for (int k = 1; k < npf; ++k) {
+      const std::vector<int> e = elements_of_node(master, master_.faces[f][k]);
+      std::vector<int> both;
+      std::set_intersection(common.begin(), common.end(), e.begin(), e.end(),
+                            std::back_inserter(both));
+      common = std::move(both);
+    }
+    if (!common.empty()) master_face_element_[f] = common.front();
+  }
+}
 
 double ContactInterface::scale() const {
   return axisymmetric_ ? 2.0 * std::numbers::pi : 1.0;

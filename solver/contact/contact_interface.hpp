@@ -68,6 +68,10 @@ class ContactInterface {
                    ContactSurface slave, ContactSettings settings, bool axisymmetric,
                    std::size_t node_count);
 
+  // Records which elements carry the surfaces (for the adhesion tests on the
+  // material state of each side). Call once, with the bodies named above.
+  void attach_bodies(const FeBody& master, const FeBody& slave);
+
   // Stage 3 (Lagrange): corrects v and x of the nodes in contact.
   void lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask, double dt);
   // Stage 5 (penalty): adds the penalty forces at x_{n+1} to nodes.f.
@@ -101,6 +105,10 @@ class ContactInterface {
   std::vector<int> local_;             // global node -> local index, -1 when not in use
   std::vector<int> local_nodes_;       // local -> global
   std::vector<std::uint8_t> touched_;  // per slave node: has carried a force
+  // Set once by attach_bodies: the slave-body elements around each slave node
+  // (CSR) and the master-body element of each master face.
+  std::vector<int> slave_elem_offsets_, slave_elem_entries_;
+  std::vector<int> master_face_element_;
   // Penalty forces of the last stage 5 and the velocities they will act on.
   std::vector<int> penalty_nodes_;
   std::vector<Vec3> penalty_force_, penalty_v_old_;

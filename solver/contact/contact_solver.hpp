@@ -42,10 +42,10 @@ struct ContactProblem {
   std::vector<std::array<int, 5>> node;
   std::vector<std::array<double, 5>> coef;  // +1 slave, -w_k master
   std::vector<Vec3> normal, tangent1, tangent2;
-  std::vector<double> b;   // required C dv, m/s
-  std::vector<double> lo;  // lower bound of the normal impulse, N s (0, or < 0 bonded)
+  std::vector<double> b;       // required C dv, m/s
+  std::vector<double> lo;      // lower bound of the normal impulse, N s (0, or < 0 bonded)
   std::vector<double> b_hold;  // bonded rows: C dv that stops the opening, m/s
-  std::vector<double> mu;  // friction coefficient per pair, -
+  std::vector<double> mu;      // friction coefficient per pair, -
   // Per local node.
   std::vector<Vec3> inv_mass;  // 1/m per component, 0 where prescribed, 1/kg
   std::vector<Vec3> velocity;  // v_{n+1/2} before the correction, m/s (friction)

@@ -333,6 +333,7 @@ Model build_model(const Scene& scene) {
     }
     model.contacts.emplace_back(it.master, it.slave, std::move(master), surface_of(sb), cs,
                                 model.axisymmetric, n);
+    model.contacts.back().attach_bodies(model.bodies[mb], model.bodies[sb]);
   }
 
   for (std::size_t wi = 0; wi < scene.interactions.size(); ++wi) {
