@@ -68,6 +68,16 @@ void ContactInterface::release_local_nodes() {
   local_nodes_.clear();
 }
 
+std::vector<DetectedPair> ContactInterface::detect(const std::vector<Vec3>& x) {
+  std::vector<DetectedPair> pairs = find_pairs_buckets(master_, slave_, x, settings_.search);
+  first_pass_pairs_ = pairs.size();
+  if (settings_.two_pass) {
+    const std::vector<DetectedPair> back = find_pairs_buckets(slave_, master_, x, settings_.search);
+    pairs.insert(pairs.end(), back.begin(), back.end());
+  }
+  return pairs;
+}
+
 void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std::uint8_t>& mask,
                                      const std::vector<DetectedPair>& pairs, double dt) {
   problem_.clear_pairs();
@@ -92,13 +102,17 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
     return local_[g];
   };
   const int npf = master_.nodes_per_face();
-  for (const DetectedPair& dp : pairs) {
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const DetectedPair& dp = pairs[i];
+    const bool second = i >= first_pass_pairs_;
+    const ContactSurface& sl = second ? master_ : slave_;
+    const ContactSurface& ma = second ? slave_ : master_;
     std::array<int, 5> ids{-1, -1, -1, -1, -1};
     std::array<double, 5> coef{};
-    ids[0] = local(slave_.nodes[dp.slave]);
+    ids[0] = local(sl.nodes[dp.slave]);
     coef[0] = 1.0;
     for (int k = 0; k < npf; ++k) {
-      ids[k + 1] = local(master_.faces[dp.face][k]);
+      ids[k + 1] = local(ma.faces[dp.face][k]);
       coef[k + 1] = -dp.geometry.weights[k];
     }
     problem_.node.push_back(ids);
@@ -116,8 +130,7 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
 void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
                                      double dt) {
   if (!(dt > 0.0)) return;
-  const std::vector<DetectedPair> pairs =
-      find_pairs_buckets(master_, slave_, nodes.x, settings_.search);
+  const std::vector<DetectedPair> pairs = detect(nodes.x);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;
   if (pairs.empty()) return;
@@ -142,7 +155,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     if (sol.p_n[i] > 0.0) {
       ++stats_.in_contact;
-      if (!touched_[pairs[i].slave]) {
+      if (i < first_pass_pairs_ && !touched_[pairs[i].slave]) {
         touched_[pairs[i].slave] = 1;
         ++stats_.ever_in_contact;
       }
@@ -156,8 +169,7 @@ void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uin
   penalty_nodes_.clear();
   penalty_force_.clear();
   penalty_v_old_.clear();
-  const std::vector<DetectedPair> pairs =
-      find_pairs_buckets(master_, slave_, nodes.x, settings_.search);
+  const std::vector<DetectedPair> pairs = detect(nodes.x);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;
   stats_.stored = 0.0;
@@ -169,7 +181,8 @@ void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uin
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const PairGeometry& g = pairs[i].geometry;
     if (g.gap >= 0.0) continue;
-    const double area = slave_node_area(slave_, pairs[i].slave, nodes.x);
+    const bool second = i >= first_pass_pairs_;
+    const double area = slave_node_area(second ? master_ : slave_, pairs[i].slave, nodes.x);
     const double k = settings_.penalty_stiffness * area;  // N/m (per radian in 2D)
     const double fn = -k * g.gap;
     stored += 0.5 * k * g.gap * g.gap;
@@ -198,7 +211,7 @@ void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uin
     const auto& cf = problem_.coef[i];
     for (int s = 0; s <= npf; ++s) force[ids[s]] += cf[s] * f;
     ++stats_.in_contact;
-    if (!touched_[pairs[i].slave]) {
+    if (!second && !touched_[pairs[i].slave]) {
       touched_[pairs[i].slave] = 1;
       ++stats_.ever_in_contact;
     }

@@ -330,6 +330,7 @@ Model build_model(const Scene& scene) {
     cs.method = it.method;
     cs.friction = it.friction;
     cs.solver.kind = it.solver;
+    cs.two_pass = it.two_pass;
     ContactSurface master = surface_of(mb);
     if (it.method == ContactMethod::penalty) {
       cs.penalty_stiffness = it.penalty_stiffness;

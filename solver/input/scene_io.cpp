@@ -526,6 +526,7 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
     in.penalty_stiffness = value_or(j, "penalty_stiffness", 0.0);
     in.friction = value_or(j, "friction", 0.0);
     in.solver = from_name(contact_solver_names, value_or(j, "solver", std::string("pgs")));
+    in.two_pass = value_or(j, "two_pass", false);
     if (in.friction > 0.0 && in.method == ContactMethod::lagrange &&
         in.solver == ContactSolverKind::active_set) {
       problems.add(at(p, "solver"), "active-set is frictionless: use pgs with friction > 0");
@@ -564,7 +565,8 @@ json interaction_to_json(const InteractionSpec& in) {
            {"slave", in.slave},
            {"method", name_of(contact_method_names, in.method)},
            {"friction", in.friction},
-           {"solver", name_of(contact_solver_names, in.solver)}};
+           {"solver", name_of(contact_solver_names, in.solver)},
+           {"two_pass", in.two_pass}};
     if (in.method == ContactMethod::penalty) j["penalty_stiffness"] = in.penalty_stiffness;
     return j;
   }
