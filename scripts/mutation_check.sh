@@ -24,6 +24,8 @@ mutations=(
   "solver/material/damage.hpp|(k_s * p + q) / tau_max|(k_s * p + q) / (1.05 * tau_max)|shear_failure_damage.*"
   "solver/material/elasticity.hpp|(Mat3::Identity() - half).inverse() * (Mat3::Identity() + half)|(Mat3::Identity() + half).inverse() * (Mat3::Identity() - half)|objective_rate.*"
   "solver/material/elasticity.hpp|const Mat3 half = 0.5 * dt * W;|const Mat3 half = 0.45 * dt * W;|objective_rate.*:simple_shear.*"
+  "solver/fe/fe_body.cpp|nodes.mass[body.conn[e][a]] += body.element_mass[e] / npe;|nodes.mass[body.conn[e][a]] += 1.05 * body.element_mass[e] / npe;|elastic_bar_wave_speed.*"
+  "solver/material/point_update.cpp|      0.5 * J_mid * ((sigma_old.array()|      0.45 * J_mid * ((sigma_old.array()|freely_vibrating_elastic_body.*"
 )
 
 status=0

@@ -369,6 +369,13 @@ BodySpec parse_body(const json& j, const std::string& p, const std::filesystem::
       }
     }
   }
+  if (const auto w = initial.find("angular_velocity"); w != initial.end()) {
+    b.angular_velocity = vec3(*w);
+    if (is_axisymmetric(b.discretization) && b.angular_velocity != Vec3::Zero()) {
+      problems.add(p + "/initial/angular_velocity",
+                   "must be [0, 0, 0] for fe-axisym bodies, which cannot spin (rad/s)");
+    }
+  }
   b.temperature = value_or(initial, "temperature", b.material.strength.T_ref);
   b.seed = value_or(initial, "seed", 1ULL);
 
@@ -409,7 +416,10 @@ json body_to_json(const BodySpec& b) {
       {"geometry", geometry_to_json(b.geometry)},
       {"discretization", std::move(d)},
       {"initial",
-       {{"velocity", to_json_vec(b.velocity)}, {"temperature", b.temperature}, {"seed", b.seed}}},
+       {{"velocity", to_json_vec(b.velocity)},
+        {"angular_velocity", to_json_vec(b.angular_velocity)},
+        {"temperature", b.temperature},
+        {"seed", b.seed}}},
       {"switches",
        {{"damage", b.switches.damage},
         {"thermal_softening", b.switches.thermal_softening},

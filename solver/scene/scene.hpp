@@ -53,9 +53,10 @@ struct BodySpec {
   double element_size = 0.0;  // m
   SectorKind sector = SectorKind::full;
   GradingSpec grading;
-  Vec3 velocity = Vec3::Zero();  // initial velocity, m/s
-  double temperature = 300.0;    // initial temperature, K
-  unsigned long long seed = 1;   // seed of the random initial damage
+  Vec3 velocity = Vec3::Zero();          // initial velocity, m/s
+  Vec3 angular_velocity = Vec3::Zero();  // initial spin about the centre of mass, rad/s (3D)
+  double temperature = 300.0;            // initial temperature, K
+  unsigned long long seed = 1;           // seed of the random initial damage
   ModelSwitches switches;
   HourglassType hourglass = HourglassType::viscous;
   double hourglass_coefficient = 0.1;  // -
