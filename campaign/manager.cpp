@@ -10,7 +10,9 @@
 #include <sstream>
 #include <thread>
 
+#include "campaign/job_end.hpp"
 #include "campaign/process.hpp"
+#include "campaign/slurm.hpp"
 
 namespace splat::campaign {
 
@@ -34,14 +36,11 @@ std::string signal_name(int sig) {
   return "signal " + std::to_string(sig) + (d ? std::string(" (") + d + ")" : std::string());
 }
 
-// What one finished child process means for its job.
-struct JobEnd {
-  JobState state = JobState::failed;
-  std::string reason;
-  bool retry = false;
-  std::optional<ResultRecord> result;
-  std::optional<int> threads;
-};
+std::filesystem::path self_executable() {
+  return std::filesystem::read_symlink("/proc/self/exe");
+}
+
+}  // namespace
 
 JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::filesystem::path& dir,
                  const JobOptions& opts) {
@@ -117,11 +116,6 @@ JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::files
   return e;
 }
 
-std::filesystem::path self_executable() {
-  return std::filesystem::read_symlink("/proc/self/exe");
-}
-
-}  // namespace
 
 Sample classify(const PointStatus& p) {
   Sample s;
@@ -273,16 +267,63 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   };
   report_progress();
 
+  // After every job has ended: store the windows, then add a refinement
+  // round if an edge is still wider than the tolerance and budget is left.
+  auto refine_round = [&] {
+    std::vector<WindowRecord> windows = compute_windows(store, cid);
+    store.store_windows(cid, windows);
+    if (!spec.refinement) return false;
+    std::vector<ExpandedJob> extra;
+    int budget = spec.refinement->max_extra_jobs - store.refinement_points_count(cid);
+    std::map<std::string, std::vector<Sample>> samples;
+    for (const PointStatus& p : store.points(cid))
+      samples[p.point.params_key].push_back(classify(p));
+    for (const WindowRecord& w : windows) {
+      const Window win = compute_window(samples[w.params_key]);
+      for (double v : refinement_points(win, spec.refinement->tolerance)) {
+        if (budget <= 0) break;
+        extra.push_back(make_job(spec, json::parse(w.params), v, resolve, version));
+        --budget;
+      }
+    }
+    if (extra.empty()) return false;
+    store.add_points(cid, to_new_points(extra, "refine"), options.rerun);
+    ++progress.round;
+    report_progress();
+    return true;
+  };
+  auto cancel_requested = [&] {
+    if (options.interrupt && options.interrupt->load()) return true;
+    const auto c = store.campaign(cid);
+    return c && c->state == CampaignState::cancelling;
+  };
+
   bool cancelled = false;
+  const bool use_slurm = options.executor ? *options.executor == ExecutorKind::slurm
+                                          : spec.executor == ExecutorKind::slurm;
+  if (use_slurm) {
+    SlurmRound round{store, cid, spec, program, jobs_dir, options.slurm, owner, {}, {}};
+    round.cancel_requested = cancel_requested;
+    round.on_job_end = [&] { report_progress(); };
+    for (;;) {
+      const SlurmRoundResult rr = run_slurm_round(round);
+      started += rr.jobs_submitted;
+      if (rr.cancelled) {
+        cancelled = true;
+        break;
+      }
+      if (store.job_counts(cid).queued > 0) continue;  // transient failures to retry
+      if (!refine_round()) break;
+    }
+  }
   auto last_poll = std::chrono::steady_clock::now();
-  for (;;) {
+  while (!use_slurm) {
     bool cancel_now = options.interrupt && options.interrupt->load();
     const auto now = std::chrono::steady_clock::now();
     if (!cancel_now &&
         std::chrono::duration<double>(now - last_poll).count() >= options.poll_seconds) {
       last_poll = now;
-      const auto c = store.campaign(cid);
-      cancel_now = c && c->state == CampaignState::cancelling;
+      cancel_now = cancel_requested();
     }
     if (cancel_now) {
       cancelled = true;
@@ -317,29 +358,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
         std::this_thread::sleep_for(std::chrono::duration<double>(options.poll_seconds));
         continue;
       }
-      // Everything has ended: windows, then maybe a refinement round.
-      std::vector<WindowRecord> windows = compute_windows(store, cid);
-      store.store_windows(cid, windows);
-      std::vector<ExpandedJob> extra;
-      if (spec.refinement) {
-        int budget = spec.refinement->max_extra_jobs - store.refinement_points_count(cid);
-        for (const WindowRecord& w : windows) {
-          std::vector<Sample> samples;
-          for (const PointStatus& p : store.points(cid)) {
-            if (p.point.params_key == w.params_key) samples.push_back(classify(p));
-          }
-          const Window win = compute_window(std::move(samples));
-          for (double v : refinement_points(win, spec.refinement->tolerance)) {
-            if (budget <= 0) break;
-            extra.push_back(make_job(spec, json::parse(w.params), v, resolve, version));
-            --budget;
-          }
-        }
-      }
-      if (extra.empty()) break;
-      store.add_points(cid, to_new_points(extra, "refine"), options.rerun);
-      ++progress.round;
-      report_progress();
+      if (!refine_round()) break;
       continue;
     }
     {

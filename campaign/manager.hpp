@@ -19,9 +19,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "campaign/slurm_options.hpp"
 #include "campaign/spec.hpp"
 #include "campaign/store.hpp"
 #include "campaign/windows.hpp"
@@ -45,6 +47,8 @@ struct ManagerOptions {
   const std::atomic<bool>* interrupt = nullptr;  // set (e.g. by SIGINT) to cancel
   std::function<void(const Progress&)> on_progress;
   double poll_seconds = 0.1;  // how often the campaign's state is checked for a cancel request
+  std::optional<ExecutorKind> executor;  // overrides the spec's executor
+  SlurmOptions slurm;
 };
 
 struct SweepReport {

@@ -6,8 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -67,12 +69,28 @@ bool owner_alive(const std::string& owner) {
   return !start.empty() && start == owner.substr(b + 1);
 }
 
-ProcessResult run_process(const ProcessSpec& spec) {
+std::string find_program(const std::string& name) {
+  if (name.find('/') != std::string::npos) return name;
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
+    const std::string candidate = dirs.substr(start, end - start) + "/" + name;
+    if (access(candidate.c_str(), X_OK) == 0) return candidate;
+    start = end + 1;
+  }
+  return name;
+}
+
+ProcessResult run_process(const ProcessSpec& spec_in) {
   ProcessResult r;
-  if (spec.argv.empty()) {
+  if (spec_in.argv.empty()) {
     r.error = "empty argument vector";
     return r;
   }
+  ProcessSpec spec = spec_in;
+  spec.argv[0] = find_program(spec.argv[0]);
   // Everything the child needs is prepared before fork: after fork in a
   // multi-threaded program only async-signal-safe calls are allowed.
   std::vector<char*> argv;

@@ -37,7 +37,11 @@ struct ProcessResult {
   std::string error;
 };
 
-// Runs the child to its end (blocking the calling thread).
+// The path of a program name looked up in PATH (a name with a '/' is kept).
+std::string find_program(const std::string& name);
+
+// Runs the child to its end (blocking the calling thread). argv[0] without a
+// '/' is looked up in PATH first.
 ProcessResult run_process(const ProcessSpec& spec);
 
 // "host:pid:start" of this process: start is the process start time from

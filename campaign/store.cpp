@@ -440,8 +440,8 @@ int Store::recover_orphaned_jobs(const std::string& host) {
   int n = 0;
   write([&](Database& db) {
     Statement running =
-        db.prepare("SELECT hash, owner FROM jobs WHERE state = 'running' AND host = ?");
-    running.bind(1, host);
+        db.prepare("SELECT hash, owner FROM jobs WHERE state = 'running' AND owner LIKE ?");
+    running.bind(1, host + ":%");
     std::vector<std::string> orphans;
     while (running.step()) {
       if (!owner_alive(running.text(1))) orphans.push_back(running.text(0));

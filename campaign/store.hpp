@@ -157,7 +157,7 @@ class Store {
                   const std::optional<ResultRecord>& result);
   // Puts a running job back in the queue (a transient failure to retry).
   void requeue_job(const std::string& hash, const std::string& reason);
-  // Jobs left `running` by managers on `host` that no longer exist (killed,
+  // Jobs left `running` by managers of `host` (owner "host:...") that no longer exist (killed,
   // even with SIGKILL) go back to the queue. Returns how many.
   int recover_orphaned_jobs(const std::string& host);
   // Cancellation: marks the campaign `cancelling` (a running manager sees it
