@@ -53,19 +53,19 @@ json windows_json(const std::vector<campaign::WindowRecord>& windows) {
 }
 
 void print_windows_table(std::FILE* out, const std::vector<campaign::WindowRecord>& windows) {
-  std::fprintf(out, "%-36s %-34s %-34s %9s  %s\n", "parameters", "critical velocity m/s",
+  std::fprintf(out, "%-48s %-34s %-34s %9s  %s\n", "parameters", "critical velocity m/s",
                "maximum velocity m/s", "intervals", "not stick/rebound");
   for (const json& row : windows_json(windows)) {
     const json& range = row.at("swept_range");
     std::string params = row.at("params").dump();
     if (params == "{}") params = "(base scene)";
-    std::fprintf(out, "%-36s %-34s %-34s %9zu  %s\n", params.c_str(),
+    std::fprintf(out, "%-48s %-34s %-34s %9zu  %s\n", params.c_str(),
                  edge_text(row.at("critical_bracket"), true, range).c_str(),
                  edge_text(row.at("maximum_bracket"), false, range).c_str(),
                  row.at("intervals").size(), unclassified_text(row.at("unclassified")).c_str());
     if (row.at("intervals").size() > 1) {
       for (const json& iv : row.at("intervals")) {
-        std::fprintf(out, "%-36s   interval %s .. %s\n", "",
+        std::fprintf(out, "%-48s   interval %s .. %s\n", "",
                      edge_text(iv.at("lower"), true, range).c_str(),
                      edge_text(iv.at("upper"), false, range).c_str());
       }
