@@ -7,7 +7,10 @@
 // form the window edge is checked against. Also: refinement finds the same
 // edge as a fine uniform grid with fewer jobs, and the sweep / windows /
 // regress commands as users call them.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
@@ -16,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "campaign/manager.hpp"
 
@@ -160,6 +164,54 @@ TEST(campaign_sweep, sweep_and_windows_commands) {
   o = run("sweep " + spec.string() + " --db " + db);
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.text.find("/velocity/values/0: must be >= 0 (m/s)"), std::string::npos) << o.text;
+}
+
+// `splat sweep` as users run it, killed with SIGKILL in the middle and run
+// again: the second run finishes the campaign, reusing what was stored.
+TEST(campaign_sweep, sweep_command_survives_kill_minus_nine) {
+  TempDir t;
+  const fs::path spec = t.path / "c.json";
+  json doc = two_mass_campaign("kill", 0.01, std::nullopt);  // 2 x 141 jobs
+  std::ofstream(spec) << doc.dump(2);
+  const fs::path db = t.path / "c.db";
+  const pid_t child = fork();
+  if (child == 0) {
+    const int devnull = open("/dev/null", O_WRONLY);
+    dup2(devnull, STDOUT_FILENO);
+    dup2(devnull, STDERR_FILENO);
+    execl(SPLAT_BINARY, SPLAT_BINARY, "sweep", spec.c_str(), "--db", db.c_str(), "--workers", "2",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Kill once some jobs have been stored.
+  for (int i = 0; i < 600; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!fs::exists(db)) continue;
+    try {
+      Store peek(db);
+      const auto cs = peek.campaigns();
+      if (!cs.empty() && peek.job_counts(cs[0].id).succeeded >= 20) break;
+    } catch (const std::exception&) {
+      // the file is being created
+    }
+  }
+  ASSERT_EQ(kill(child, SIGKILL), 0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  int stored = 0;
+  {
+    Store peek(db);
+    const JobCounts c = peek.job_counts(peek.campaigns().at(0).id);
+    stored = c.succeeded;
+    EXPECT_LT(stored, 282) << "the sweep ended before the kill; nothing tested";
+  }
+  const Output o = run("sweep " + spec.string() + " --db " + db.string());
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(
+      o.text.find("282 jobs: 282 succeeded; " + std::to_string(282 - stored) + " started here"),
+      std::string::npos)
+      << o.text;
 }
 
 TEST(campaign_sweep, regress_passes_on_its_baseline_and_fails_on_drift) {
