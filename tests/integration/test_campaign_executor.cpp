@@ -170,7 +170,7 @@ TEST(campaign_executor, cancellation_stops_running_jobs_and_queued_ones_never_st
   // campaign once its first jobs are running.
   std::thread canceller([&] {
     Store other(db);
-    for (int i = 0; i < 500 && lines_of(log).size() < 2; ++i) {
+    for (int i = 0; i < 3000 && lines_of(log).size() < 2; ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
     other.request_cancel(other.campaigns().at(0).id);
@@ -180,7 +180,7 @@ TEST(campaign_executor, cancellation_stops_running_jobs_and_queued_ones_never_st
   canceller.join();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  EXPECT_LT(seconds, 10.0);
+  EXPECT_LT(seconds, 20.0);
   EXPECT_EQ(r.state, CampaignState::cancelled);
   EXPECT_EQ(store.campaign(r.campaign_id)->state, CampaignState::cancelled);
   EXPECT_EQ(r.counts.cancelled, 10);
@@ -267,7 +267,7 @@ TEST(campaign_executor, kill_minus_nine_and_resume_end_every_job_exactly_once) {
     for (const std::string& l : lines_of(log)) n += l.rfind(what, 0) == 0;
     return n;
   };
-  for (int i = 0; i < 1000 && !(count("end") >= 4 && count("start") > count("end")); ++i) {
+  for (int i = 0; i < 4000 && !(count("end") >= 4 && count("start") > count("end")); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   ASSERT_EQ(kill(manager, SIGKILL), 0);
