@@ -1,0 +1,402 @@
+#include "solver/sph/sph_body.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "solver/material/damage.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#define SPLAT_OMP(directive) _Pragma(#directive)
+#else
+#define SPLAT_OMP(directive)
+#endif
+
+namespace splat {
+
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+// Particles per reduction block: partial sums over fixed blocks combined in
+// block order do not depend on the thread count.
+constexpr std::size_t block_size = 64;
+constexpr long long min_parallel_particles = 256;
+
+struct BlockSums {
+  double dt_min = infinity;
+  double hourglass_power = 0.0;
+  double viscosity_power = 0.0;
+  double max_deformation = 0.0;
+  int max_iterations = 0;
+  bool failed = false;
+  long long inverted = 0;
+};
+
+std::size_t num_blocks(std::size_t n) {
+  return (n + block_size - 1) / block_size;
+}
+
+// Runs body(i, sums) for every particle, in fixed blocks, in parallel.
+template <class Body>
+void for_blocks(std::size_t n, std::vector<BlockSums>& blocks, Body&& body) {
+  const long long nb = static_cast<long long>(num_blocks(n));
+  blocks.assign(static_cast<std::size_t>(nb), BlockSums{});
+  SPLAT_OMP(omp parallel for schedule(static) if (static_cast<long long>(n) >= min_parallel_particles))
+  for (long long bk = 0; bk < nb; ++bk) {
+    const std::size_t k = static_cast<std::size_t>(bk);
+    const std::size_t end = std::min(n, (k + 1) * block_size);
+    for (std::size_t i = k * block_size; i < end; ++i) body(i, blocks[k]);
+  }
+}
+
+void check_settings(const SphSettings& s) {
+  const auto bad = [](const char* what) {
+    throw std::invalid_argument(std::string("SPH settings: ") + what);
+  };
+  if (!(s.h_over_spacing > 0.0)) bad("h_over_spacing must be > 0");
+  if (s.visc_linear < 0.0 || s.visc_quadratic < 0.0) bad("viscosity coefficients must be >= 0");
+  if (s.hourglass_coefficient < 0.0) bad("hourglass_coefficient must be >= 0");
+  if (s.update_threshold < 0.0) bad("update_threshold must be >= 0");
+}
+
+// F and Fdot of particle i from the current positions and velocities.
+inline void deformation(const SphBody& b, const NodeSet& nodes, std::size_t i, Mat3& F,
+                        Mat3& Fdot) {
+  const std::size_t base = b.node_begin;
+  const Vec3 xi = nodes.x[base + i];
+  const Vec3 vi = nodes.v[base + i];
+  F = b.null_projector[i];
+  Fdot.setZero();
+  const int end = b.pairs.offsets[i + 1];
+  for (int k = b.pairs.offsets[i]; k < end; ++k) {
+    const std::size_t kk = static_cast<std::size_t>(k);
+    const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
+    const std::uint8_t op = b.pairs.op[kk];
+    const Vec3 g = b.volume_ref[j] * b.pair_grad[kk];
+    Vec3 xj = nodes.x[base + j], vj = nodes.v[base + j];
+    if (op != 0) {
+      xj = mirror_point(b.planes, op, xj);
+      vj = mirror_vector(b.planes, op, vj);
+    }
+    F.noalias() += (xj - xi) * g.transpose();
+    Fdot.noalias() += (vj - vi) * g.transpose();
+  }
+}
+
+}  // namespace
+
+void sph_build_reference(SphBody& b) {
+  const std::size_t n = b.size();
+  b.pairs = find_neighbours(b.X, b.h, b.planes, b.active);
+  const std::size_t np = b.pairs.num_pairs();
+  b.pair_reverse.assign(np, -1);
+  b.pair_grad.assign(np, Vec3::Zero());
+  b.pair_dX.assign(np, Vec3::Zero());
+  b.pair_w.assign(np, 0.0);
+  b.pair_dw.assign(np, 0.0);
+  b.null_projector.assign(n, Mat3::Zero());
+
+  const long long count = static_cast<long long>(n);
+  SPLAT_OMP(omp parallel for schedule(static) if (count >= min_parallel_particles))
+  for (long long ii = 0; ii < count; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const int begin = b.pairs.offsets[i], end = b.pairs.offsets[i + 1];
+    Mat3 C = Mat3::Zero();
+    for (int k = begin; k < end; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
+      const std::uint8_t op = b.pairs.op[kk];
+      const Vec3 dX = mirror_point(b.planes, op, b.X[j]) - b.X[i];
+      const double r0 = dX.norm();
+      const KernelValue kv = kernel(b.settings.kernel, r0, 0.5 * (b.h[i] + b.h[j]));
+      b.pair_dX[kk] = dX;
+      b.pair_w[kk] = kv.w;
+      b.pair_dw[kk] = kv.dw_dr;
+      b.pair_grad[kk] = (-kv.dw_dr / r0) * dX;  // uncorrected for now
+      C.noalias() += b.volume_ref[j] * dX * b.pair_grad[kk].transpose();
+      // Reverse pair (j, i, op) in j's list, sorted by (op, j).
+      const int* first = b.pairs.j.data() + b.pairs.offsets[j];
+      const int* last = b.pairs.j.data() + b.pairs.offsets[j + 1];
+      const std::uint8_t* op_first = b.pairs.op.data() + b.pairs.offsets[j];
+      for (const int* p = first; p != last; ++p) {
+        const std::size_t at = static_cast<std::size_t>(p - first);
+        if (op_first[at] == op && *p == static_cast<int>(i)) {
+          b.pair_reverse[kk] = b.pairs.offsets[j] + static_cast<int>(at);
+          break;
+        }
+      }
+    }
+    // C is symmetric positive semi-definite: invert on its range; the null
+    // space (a particle with neighbours in a plane, a line or none) maps
+    // rigidly through null_projector.
+    Mat3 B;
+    const double scale = C.norm();
+    if (scale > 0.0 && std::abs(C.determinant()) > 1e-9 * scale * scale * scale) {
+      B = C.inverse();
+    } else {
+      const Eigen::SelfAdjointEigenSolver<Mat3> eig(C);
+      B.setZero();
+      Mat3 range = Mat3::Zero();
+      for (int a = 0; a < 3; ++a) {
+        const double lambda = eig.eigenvalues()[a];
+        if (lambda > 1e-6 * scale) {
+          const Vec3 u = eig.eigenvectors().col(a);
+          B += (1.0 / lambda) * u * u.transpose();
+          range += u * u.transpose();
+        }
+      }
+      b.null_projector[i] = Mat3::Identity() - range;
+    }
+    for (int k = begin; k < end; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      b.pair_grad[kk] = B * b.pair_grad[kk];
+    }
+  }
+  for (int r : b.pair_reverse) {
+    if (r < 0) throw std::logic_error("SPH reference: neighbour lists are not symmetric");
+  }
+  b.F.assign(n, Mat3::Identity());
+  b.Fdot.assign(n, Mat3::Zero());
+}
+
+SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const Material& material,
+                      const ModelSwitches& switches, const SphSettings& settings,
+                      const SymmetryPlanes& planes, const Vec3& velocity, double temperature,
+                      unsigned long long seed, NodeSet& nodes) {
+  check_settings(settings);
+  SphBody b;
+  b.name = name;
+  b.material = material;
+  b.constants = derive_constants(material);
+  b.switches = switches;
+  b.settings = settings;
+  b.planes = planes;
+  b.spacing = cloud.spacing;
+  b.node_begin = nodes.size();
+  b.node_end = b.node_begin + cloud.size();
+  const std::size_t n = cloud.size();
+  const std::size_t total = b.node_end;
+  nodes.x0.resize(total, Vec3::Zero());
+  nodes.x.resize(total, Vec3::Zero());
+  nodes.v.resize(total, Vec3::Zero());
+  nodes.f.resize(total, Vec3::Zero());
+  nodes.mass.resize(total, 0.0);
+  nodes.boundary.resize(total, boundary_none);
+  const double h0 = settings.h_over_spacing * cloud.spacing;
+  b.volume0 = cloud.volume;
+  b.outward_normal = cloud.outward_normal;
+  b.X = cloud.x;
+  b.volume_ref = cloud.volume;
+  b.J_ref.assign(n, 1.0);
+  b.h.assign(n, h0);
+  b.state.resize(n);
+  b.P.assign(n, Mat3::Zero());
+  b.dt_bound.assign(n, infinity);
+  b.active.assign(n, 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t g = b.node_begin + i;
+    nodes.x0[g] = nodes.x[g] = cloud.x[i];
+    nodes.v[g] = velocity;
+    nodes.mass[g] = material.density * cloud.volume[i];
+    nodes.boundary[g] = cloud.boundary[i];
+    const double D0 = switches.damage && material.damage.initial_random_max > 0.0
+                          ? initial_random_damage(seed, i, material.damage.initial_random_max)
+                          : 0.0;
+    b.state[i] = initial_point_state(material, switches, temperature, D0);
+  }
+  sph_build_reference(b);
+  return b;
+}
+
+void sph_update_reference(SphBody& b, const NodeSet& nodes) {
+  const std::size_t n = b.size();
+  const double h0 = b.settings.h_over_spacing * b.spacing;
+  for (std::size_t i = 0; i < n; ++i) {
+    b.X[i] = nodes.x[b.node_begin + i];
+    const double J = b.F[i].determinant();
+    if (b.active[i] && J > 0.0) {
+      b.volume_ref[i] *= J;
+      b.J_ref[i] *= J;
+    }
+    b.h[i] = h0 * std::cbrt(b.J_ref[i]);
+  }
+  sph_build_reference(b);
+  ++b.reference_updates;
+  b.update_pending = false;
+}
+
+SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
+  SphStepResult result;
+  const std::size_t n = b.size();
+  std::vector<BlockSums> blocks;
+
+  // Deformation from the reference; update the reference if due.
+  const auto compute_F = [&]() {
+    for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
+      if (!b.active[i]) return;
+      deformation(b, nodes, i, b.F[i], b.Fdot[i]);
+      s.max_deformation = std::max(s.max_deformation, (b.F[i] - Mat3::Identity()).norm());
+    });
+    double m = 0.0;
+    for (const BlockSums& s : blocks) m = std::max(m, s.max_deformation);
+    return m;
+  };
+  result.max_deformation = compute_F();
+  const double threshold = b.settings.update_threshold;
+  if (b.update_pending || (threshold > 0.0 && result.max_deformation > threshold)) {
+    sph_update_reference(b, nodes);
+    result.reference_updated = true;
+    result.max_deformation = compute_F();
+  }
+
+  // Material update and first Piola-Kirchhoff stress.
+  const Material& mat = b.material;
+  const DamageParams& dm = mat.damage;
+  const bool can_fail =
+      b.settings.deactivate_failed && b.switches.damage && dm.initiation != DamageInitiation::none;
+  std::vector<std::uint8_t> failed(n, 0);
+  for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
+    if (!b.active[i]) {
+      b.P[i].setZero();
+      return;
+    }
+    const Mat3& F = b.F[i];
+    const double detF = F.determinant();
+    if (!(detF > 0.0)) {
+      ++s.inverted;
+      b.P[i].setZero();
+      return;
+    }
+    PointState& st = b.state[i];
+    if (dt > 0.0) {
+      const Mat3 F_mid = F - 0.5 * dt * b.Fdot[i];
+      const Mat3 L = b.Fdot[i] * F_mid.inverse();
+      const Mat3 D = 0.5 * (L + L.transpose());
+      const Mat3 W = 0.5 * (L - L.transpose());
+      st.s = rotate_symmetric(hughes_winget_rotation(W, dt), st.s);
+      const double J = b.J_ref[i] * detF;
+      const double length = b.spacing * std::cbrt(J);
+      const PointUpdateResult r =
+          update_point(mat, b.constants, b.switches, st, dt * D, J, dt, length);
+      s.max_iterations = std::max(s.max_iterations, r.iterations);
+      s.failed = s.failed || !r.converged;
+      if (can_fail && st.D >= dm.D_max - 1e-12) failed[i] = 1;
+    }
+    b.P[i] = detF * st.cauchy() * F.inverse().transpose();
+  });
+  for (const BlockSums& s : blocks) {
+    result.max_return_iterations = std::max(result.max_return_iterations, s.max_iterations);
+    result.return_failed = result.return_failed || s.failed;
+    result.inverted += s.inverted;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (failed[i]) {
+      b.active[i] = 0;
+      b.P[i].setZero();
+      result.deactivated.push_back(static_cast<int>(i));
+      b.update_pending = true;
+    }
+  }
+
+  // Pair forces, gathered per particle.
+  const double c = b.constants.wave_speed;
+  const double alpha = b.settings.visc_linear, beta = b.settings.visc_quadratic;
+  const double c_hg = b.settings.hourglass_coefficient;
+  const double E = mat.elastic.E;
+  const auto hourglass_modulus = [&](std::size_t i) {
+    const PointState& st = b.state[i];
+    return st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
+  };
+  for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
+    if (!b.active[i]) {
+      b.dt_bound[i] = infinity;
+      return;
+    }
+    const std::size_t gi = b.node_begin + i;
+    const Vec3 xi = nodes.x[gi], vi = nodes.v[gi];
+    const double mi = nodes.mass[gi];
+    const double Vi = b.volume_ref[i];
+    const double rho_i = b.material.density / (b.J_ref[i] * std::max(b.F[i].determinant(), 1e-12));
+    const double E_i = hourglass_modulus(i);
+    Vec3 f_stress = Vec3::Zero(), f_visc = Vec3::Zero(), f_hg = Vec3::Zero();
+    double min_stretch = infinity, max_mu = 0.0;
+    const int end = b.pairs.offsets[i + 1];
+    for (int k = b.pairs.offsets[i]; k < end; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
+      const std::uint8_t op = b.pairs.op[kk];
+      const std::size_t gj = b.node_begin + j;
+      const double Vj = b.volume_ref[j];
+      const Vec3& gc_rev = b.pair_grad[static_cast<std::size_t>(b.pair_reverse[kk])];
+      Vec3 pj = b.P[j] * gc_rev;
+      Vec3 xj = nodes.x[gj], vj = nodes.v[gj];
+      Mat3 Fj = b.F[j];
+      if (op != 0) {
+        pj = mirror_vector(b.planes, op, pj);
+        xj = mirror_point(b.planes, op, xj);
+        vj = mirror_vector(b.planes, op, vj);
+        Fj = mirror_tensor(b.planes, op, Fj);
+      }
+      f_stress += (Vi * Vj) * (b.P[i] * b.pair_grad[kk] - pj);
+      if (!b.active[j]) continue;
+
+      const Vec3 x_ij = xj - xi;
+      const Vec3 v_ij = vj - vi;
+      const double r = x_ij.norm();
+      if (!(r > 0.0)) continue;
+      const Vec3 e_ij = x_ij / r;
+      const Vec3& dX = b.pair_dX[kk];
+      const double r0_sq = dX.squaredNorm();
+      min_stretch = std::min(min_stretch, r / std::sqrt(r0_sq));
+
+      // Monaghan viscosity between approaching particles.
+      const double vx = v_ij.dot(x_ij);
+      if (vx < 0.0 && (alpha > 0.0 || beta > 0.0)) {
+        const double hij = 0.5 * (b.h[i] + b.h[j]);
+        const double mu = hij * vx / (r * r + 0.01 * hij * hij);
+        const double rho_j =
+            b.material.density / (b.J_ref[j] * std::max(b.F[j].determinant(), 1e-12));
+        const double Pi = (-alpha * c * mu + beta * mu * mu) / (0.5 * (rho_i + rho_j));
+        f_visc += (mi * nodes.mass[gj] * Pi * b.pair_dw[kk]) * e_ij;
+        max_mu = std::max(max_mu, -mu);
+      }
+
+      // Ganzenmueller hourglass control.
+      if (c_hg > 0.0) {
+        const Vec3 eps = 0.5 * (b.F[i] + Fj) * dX - x_ij;
+        const double delta = eps.dot(e_ij);
+        const double E_ij = 0.5 * (E_i + hourglass_modulus(j));
+        f_hg -= (c_hg * E_ij * Vi * Vj * b.pair_w[kk] * delta / r0_sq) * e_ij;
+      }
+    }
+    nodes.f[gi] += f_stress + f_visc + f_hg;
+    s.viscosity_power -= f_visc.dot(vi);
+    s.hourglass_power -= f_hg.dot(vi);
+    const double d_i = b.h[i] / b.settings.h_over_spacing;
+    const double L_i = min_stretch < infinity ? d_i * min_stretch : d_i;  // a lone particle: d_i
+    const double v_sig = c + 1.2 * (alpha * c + beta * max_mu);
+    b.dt_bound[i] = L_i / v_sig;
+    s.dt_min = std::min(s.dt_min, b.dt_bound[i]);
+  });
+  result.dt_stable = infinity;
+  for (const BlockSums& s : blocks) {
+    result.dt_stable = std::min(result.dt_stable, s.dt_min);
+    result.hourglass_power += s.hourglass_power;
+    result.viscosity_power += s.viscosity_power;
+  }
+  return result;
+}
+
+double sph_internal_energy(const SphBody& b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b.active[i]) sum += b.volume0[i] * b.state[i].e;
+  }
+  return sum;
+}
+
+}  // namespace splat
