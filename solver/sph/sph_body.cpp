@@ -61,6 +61,10 @@ void check_settings(const SphSettings& s) {
   if (s.visc_linear < 0.0 || s.visc_quadratic < 0.0) bad("viscosity coefficients must be >= 0");
   if (s.hourglass_coefficient < 0.0) bad("hourglass_coefficient must be >= 0");
   if (s.update_threshold < 0.0) bad("update_threshold must be >= 0");
+  if (s.min_correction_eigenvalue < 0.0 || s.min_correction_eigenvalue >= 1.0) {
+    bad("min_correction_eigenvalue must be in [0, 1)");
+  }
+  if (!(s.max_h_growth >= 1.0)) bad("max_h_growth must be >= 1");
 }
 
 // F and Fdot of particle i from the current positions and velocities.
@@ -130,26 +134,33 @@ void sph_build_reference(SphBody& b) {
         }
       }
     }
-    // C is symmetric positive semi-definite: invert on its range; the null
-    // space (a particle with neighbours in a plane, a line or none) maps
-    // rigidly through null_projector.
-    Mat3 B;
-    const double scale = C.norm();
-    if (scale > 0.0 && std::abs(C.determinant()) > 1e-9 * scale * scale * scale) {
-      B = C.inverse();
+    // C is symmetric positive semi-definite and close to I for a full
+    // neighbourhood (about 1/2 across a flat free surface, less at edges and
+    // corners). Along an eigenvector u with eigenvalue lambda >= lambda_min, B
+    // inverts C; a weaker direction (a particle that kept few neighbours, or
+    // neighbours only in a plane or a line) is inverted with lambda_min and
+    // blended towards a rigid map through null_projector with weight
+    // 1 - lambda / lambda_min, so the corrected gradients stay bounded by
+    // |g| / lambda_min there (exactness is kept wherever lambda >= lambda_min).
+    const double lambda_min = b.settings.min_correction_eigenvalue;
+    Eigen::SelfAdjointEigenSolver<Mat3> eig;
+    eig.compute(C);
+    Mat3 B = Mat3::Zero();
+    if (eig.eigenvalues().minCoeff() >= lambda_min && eig.eigenvalues().minCoeff() > 0.0) {
+      B = C.inverse();  // the usual case; the inverse is exact to round-off
     } else {
-      const Eigen::SelfAdjointEigenSolver<Mat3> eig(C);
-      B.setZero();
-      Mat3 range = Mat3::Zero();
+      Mat3 null = Mat3::Zero();
       for (int a = 0; a < 3; ++a) {
-        const double lambda = eig.eigenvalues()[a];
-        if (lambda > 1e-6 * scale) {
-          const Vec3 u = eig.eigenvectors().col(a);
+        const double lambda = std::max(eig.eigenvalues()[a], 0.0);
+        const Vec3 u = eig.eigenvectors().col(a);
+        if (lambda >= lambda_min && lambda > 0.0) {
           B += (1.0 / lambda) * u * u.transpose();
-          range += u * u.transpose();
+        } else {
+          if (lambda_min > 0.0) B += (1.0 / lambda_min) * u * u.transpose();
+          null += (lambda_min > 0.0 ? 1.0 - lambda / lambda_min : 1.0) * u * u.transpose();
         }
       }
-      b.null_projector[i] = Mat3::Identity() - range;
+      b.null_projector[i] = null;
     }
     for (int k = begin; k < end; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
@@ -192,6 +203,7 @@ SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const
   b.X = cloud.x;
   b.volume_ref = cloud.volume;
   b.J_ref.assign(n, 1.0);
+  b.F_ref.assign(n, Mat3::Identity());
   b.h.assign(n, h0);
   b.state.resize(n);
   b.P.assign(n, Mat3::Zero());
@@ -221,8 +233,13 @@ void sph_update_reference(SphBody& b, const NodeSet& nodes) {
     if (b.active[i] && J > 0.0) {
       b.volume_ref[i] *= J;
       b.J_ref[i] *= J;
+      b.F_ref[i] = b.F[i] * b.F_ref[i];
     }
-    b.h[i] = h0 * std::cbrt(b.J_ref[i]);
+    // h follows the largest stretch (the widest current spacing), capped.
+    Eigen::SelfAdjointEigenSolver<Mat3> eig(b.F_ref[i].transpose() * b.F_ref[i],
+                                            Eigen::EigenvaluesOnly);
+    const double stretch = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
+    b.h[i] = h0 * std::clamp(stretch, std::cbrt(b.J_ref[i]), b.settings.max_h_growth);
   }
   sph_build_reference(b);
   ++b.reference_updates;
@@ -323,7 +340,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     const double rho_i = b.material.density / (b.J_ref[i] * std::max(b.F[i].determinant(), 1e-12));
     const double E_i = hourglass_modulus(i);
     Vec3 f_stress = Vec3::Zero(), f_visc = Vec3::Zero(), f_hg = Vec3::Zero();
-    double min_stretch = infinity, max_mu = 0.0;
+    double r_min = infinity, max_mu = 0.0;
     const int end = b.pairs.offsets[i + 1];
     for (int k = b.pairs.offsets[i]; k < end; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
@@ -351,7 +368,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       const Vec3 e_ij = x_ij / r;
       const Vec3& dX = b.pair_dX[kk];
       const double r0_sq = dX.squaredNorm();
-      min_stretch = std::min(min_stretch, r / std::sqrt(r0_sq));
+      r_min = std::min(r_min, r);
 
       // Monaghan viscosity between approaching particles.
       const double vx = v_ij.dot(x_ij);
@@ -376,8 +393,8 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     nodes.f[gi] += f_stress + f_visc + f_hg;
     s.viscosity_power -= f_visc.dot(vi);
     s.hourglass_power -= f_hg.dot(vi);
-    const double d_i = b.h[i] / b.settings.h_over_spacing;
-    const double L_i = min_stretch < infinity ? d_i * min_stretch : d_i;  // a lone particle: d_i
+    // A particle without active neighbours keeps the bound of its spacing.
+    const double L_i = r_min < infinity ? r_min : b.h[i] / b.settings.h_over_spacing;
     const double v_sig = c + 1.2 * (alpha * c + beta * max_mu);
     b.dt_bound[i] = L_i / v_sig;
     s.dt_min = std::min(s.dt_min, b.dt_bound[i]);

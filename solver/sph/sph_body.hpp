@@ -15,8 +15,9 @@
 // dX_ij = op(X_j) - X_i, r0 = |dX_ij|:
 //   g_ij  = -W'(r0, h_ij) dX_ij / r0                 (grad_i W_ij)
 //   C_i   = sum_j V_j dX_ij (x) g_ij                 (symmetric, positive)
-//   gc_ij = C_i^-1 g_ij                              (corrected gradient; C_i^+ and
-//           the null-space projector if C_i is singular, e.g. a lone particle)
+//   gc_ij = C_i^-1 g_ij                              (corrected gradient; weak
+//           directions of C_i, eigenvalue < min_correction_eigenvalue, are
+//           bounded and blended to a rigid map: see sph_build_reference)
 //   F_i   = sum_j V_j (op(x_j) - x_i) (x) gc_ij      (exact for linear fields,
 //                                                    free surfaces included)
 //   Fdot_i = sum_j V_j (S v_j - v_i) (x) gc_ij
@@ -41,14 +42,18 @@
 // particle's plastic strain exceeds 1e-3 (so the control does not stiffen
 // plastic flow). Units: Pa m^3 m^3 m^-3 m m^-2 = N.
 // Time step bound (stated, not the thesis's garbled eq. 2.2): per particle
-//   dt_i = d_i min_j(r / r0) / (c + 1.2 (alpha c + beta max_j |mu_ij|))
-// with d_i the particle spacing (h_i / h_over_spacing), the min over pairs
-// measuring the particle's greatest compression along a pair; the caller
-// multiplies by its stability coefficient.
+//   dt_i = min_j r_ij / (c + 1.2 (alpha c + beta max_j |mu_ij|))
+// with min_j r_ij the current distance to the nearest neighbour (the spacing
+// d on the initial lattice; it shrinks with compression along any pair,
+// whatever the reference) and the signal speed of Monaghan (1992); the
+// caller multiplies by its stability coefficient.
 // Reference update: when max_i ||F_i - I||_F (Frobenius) exceeds
 // update_threshold, the whole body is re-referenced at the start of
-// sph_internal_forces: X = x, V_i *= det F_i, J_ref *= det F_i,
-// h_i = h_0 J_ref^(1/3) (h_0 = h_over_spacing d), neighbours re-found by the
+// sph_internal_forces: X = x, V_i *= det F_i, J_ref *= det F_i, F_ref = F F_ref
+// (the deformation from the initial configuration), h_i = h_0 times the
+// largest principal stretch of F_ref (so the kernel still reaches neighbours
+// along the most stretched direction; J_ref^(1/3) would starve it), capped at
+// max_h_growth h_0 (h_0 = h_over_spacing d), neighbours re-found by the
 // cell search and corrections rebuilt; F is then computed afresh from the new
 // reference (F = I, Fdot the current velocity gradient). Stresses, plastic
 // strain, damage, temperature and energy are kept (they are Cauchy/spatial).
@@ -80,7 +85,9 @@ struct SphSettings {
   double visc_quadratic = 4.0;         // Monaghan beta, -
   double hourglass_coefficient = 1.0;  // Ganzenmueller c_hg, -
   double update_threshold = 1.0;       // ||F - I||_F that triggers a reference update; 0 = never
-  bool deactivate_failed = false;      // particles at D_max stop carrying stress
+  double min_correction_eigenvalue = 0.05;  // lambda_min of the kernel correction, -
+  double max_h_growth = 2.0;                // cap on h / h_0 at reference updates, -
+  bool deactivate_failed = false;           // particles at D_max stop carrying stress
 };
 
 struct SphBody {
@@ -101,6 +108,7 @@ struct SphBody {
   std::vector<Vec3> X;               // reference positions, m
   std::vector<double> volume_ref;    // reference volumes, m^3
   std::vector<double> J_ref;         // volume_ref / volume0, -
+  std::vector<Mat3> F_ref;           // deformation of the reference from the initial state, -
   std::vector<double> h;             // smoothing lengths, m
   NeighbourList pairs;               // reference neighbours (local indices)
   std::vector<int> pair_reverse;     // index of the reverse pair (j, i, op)
