@@ -324,10 +324,16 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   const double alpha = b.settings.visc_linear, beta = b.settings.visc_quadratic;
   const double c_hg = b.settings.hourglass_coefficient;
   const double E = mat.elastic.E;
-  const auto hourglass_modulus = [&](std::size_t i) {
+  const bool mirrors = !b.planes.empty();
+  // Per-particle quantities the pairs read: current density and the
+  // hourglass modulus ((1 - D) E, or the flow stress once plastic).
+  b.rho.resize(n);
+  b.E_hg.resize(n);
+  for_blocks(n, blocks, [&](std::size_t i, BlockSums&) {
     const PointState& st = b.state[i];
-    return st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
-  };
+    b.rho[i] = mat.density / (b.J_ref[i] * std::max(b.F[i].determinant(), 1e-12));
+    b.E_hg[i] = st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
+  });
   for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
     if (!b.active[i]) {
       b.dt_bound[i] = infinity;
@@ -337,57 +343,60 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     const Vec3 xi = nodes.x[gi], vi = nodes.v[gi];
     const double mi = nodes.mass[gi];
     const double Vi = b.volume_ref[i];
-    const double rho_i = b.material.density / (b.J_ref[i] * std::max(b.F[i].determinant(), 1e-12));
-    const double E_i = hourglass_modulus(i);
+    const double rho_i = b.rho[i];
+    const double E_i = b.E_hg[i];
+    const double h_i = b.h[i];
+    const Mat3& Pi_ = b.P[i];
+    const Mat3& Fi = b.F[i];
     Vec3 f_stress = Vec3::Zero(), f_visc = Vec3::Zero(), f_hg = Vec3::Zero();
     double r_min = infinity, max_mu = 0.0;
     const int end = b.pairs.offsets[i + 1];
     for (int k = b.pairs.offsets[i]; k < end; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
       const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
-      const std::uint8_t op = b.pairs.op[kk];
       const std::size_t gj = b.node_begin + j;
       const double Vj = b.volume_ref[j];
-      const Vec3& gc_rev = b.pair_grad[static_cast<std::size_t>(b.pair_reverse[kk])];
-      Vec3 pj = b.P[j] * gc_rev;
+      const Vec3& dX = b.pair_dX[kk];
+      Vec3 pj = b.P[j] * b.pair_grad[static_cast<std::size_t>(b.pair_reverse[kk])];
       Vec3 xj = nodes.x[gj], vj = nodes.v[gj];
-      Mat3 Fj = b.F[j];
+      Vec3 Fj_dX;  // (S F_j S) dX = S F_j (S dX)
+      const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
       if (op != 0) {
         pj = mirror_vector(b.planes, op, pj);
         xj = mirror_point(b.planes, op, xj);
         vj = mirror_vector(b.planes, op, vj);
-        Fj = mirror_tensor(b.planes, op, Fj);
+        Fj_dX = mirror_vector(b.planes, op, b.F[j] * mirror_vector(b.planes, op, dX));
+      } else {
+        Fj_dX = b.F[j] * dX;
       }
-      f_stress += (Vi * Vj) * (b.P[i] * b.pair_grad[kk] - pj);
+      f_stress += (Vi * Vj) * (Pi_ * b.pair_grad[kk] - pj);
       if (!b.active[j]) continue;
 
       const Vec3 x_ij = xj - xi;
-      const Vec3 v_ij = vj - vi;
-      const double r = x_ij.norm();
-      if (!(r > 0.0)) continue;
-      const Vec3 e_ij = x_ij / r;
-      const Vec3& dX = b.pair_dX[kk];
-      const double r0_sq = dX.squaredNorm();
+      const double r_sq = x_ij.squaredNorm();
+      if (!(r_sq > 0.0)) continue;
+      const double r = std::sqrt(r_sq);
+      const double inv_r = 1.0 / r;
       r_min = std::min(r_min, r);
+      double central = 0.0;  // viscosity force along e_ij
 
       // Monaghan viscosity between approaching particles.
-      const double vx = v_ij.dot(x_ij);
-      if (vx < 0.0 && (alpha > 0.0 || beta > 0.0)) {
-        const double hij = 0.5 * (b.h[i] + b.h[j]);
-        const double mu = hij * vx / (r * r + 0.01 * hij * hij);
-        const double rho_j =
-            b.material.density / (b.J_ref[j] * std::max(b.F[j].determinant(), 1e-12));
-        const double Pi = (-alpha * c * mu + beta * mu * mu) / (0.5 * (rho_i + rho_j));
-        f_visc += (mi * nodes.mass[gj] * Pi * b.pair_dw[kk]) * e_ij;
+      const double vx = (vj - vi).dot(x_ij);
+      if (vx < 0.0) {
+        const double hij = 0.5 * (h_i + b.h[j]);
+        const double mu = hij * vx / (r_sq + 0.01 * hij * hij);
+        const double Pi = (-alpha * c * mu + beta * mu * mu) / (0.5 * (rho_i + b.rho[j]));
+        central = mi * nodes.mass[gj] * Pi * b.pair_dw[kk];
         max_mu = std::max(max_mu, -mu);
       }
+      f_visc += (central * inv_r) * x_ij;
 
       // Ganzenmueller hourglass control.
       if (c_hg > 0.0) {
-        const Vec3 eps = 0.5 * (b.F[i] + Fj) * dX - x_ij;
-        const double delta = eps.dot(e_ij);
-        const double E_ij = 0.5 * (E_i + hourglass_modulus(j));
-        f_hg -= (c_hg * E_ij * Vi * Vj * b.pair_w[kk] * delta / r0_sq) * e_ij;
+        const Vec3 eps = 0.5 * (Fi * dX + Fj_dX) - x_ij;
+        const double delta = eps.dot(x_ij) * inv_r;
+        const double E_ij = 0.5 * (E_i + b.E_hg[j]);
+        f_hg -= (c_hg * E_ij * Vi * Vj * b.pair_w[kk] * delta / dX.squaredNorm() * inv_r) * x_ij;
       }
     }
     nodes.f[gi] += f_stress + f_visc + f_hg;

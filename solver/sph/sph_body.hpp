@@ -126,6 +126,8 @@ struct SphBody {
   std::vector<Mat3> Fdot;            // its rate, 1/s
   std::vector<Mat3> P;               // first Piola-Kirchhoff stress, Pa
   std::vector<double> dt_bound;      // per-particle time-step bound, s
+  std::vector<double> rho;           // current density, kg/m^3
+  std::vector<double> E_hg;          // hourglass modulus, Pa
   std::vector<std::uint8_t> active;  // 0 once deactivated
 
   std::size_t size() const { return node_end - node_begin; }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "solver/material/damage.hpp"
 #include "solver/material/elasticity.hpp"
 #include "solver/mesh/mesh.hpp"
 #include "solver/sph/sph_body.hpp"
@@ -335,6 +336,43 @@ TEST(SphCorrection, BoundedForAParticleWithOneNeighbour) {
   EXPECT_NEAR(body.F[0](2, 2), 1.0, 1e-12);
   EXPECT_GT(body.F[0](0, 0), 1.0);
   EXPECT_TRUE(body.F[0].allFinite());
+}
+
+// deactivate_failed: a particle whose damage reaches D_max stops carrying
+// stress at once and leaves every neighbour list at the next call (a
+// reference update); without the switch it stays.
+TEST(SphDamage, FailedParticleIsDeactivatedOnlyWhenAsked) {
+  ParticleSpec s;
+  s.shape = ParticleShape::box;
+  s.lattice = Lattice::cubic;
+  s.hi = Vec3(0.5e-3, 0.5e-3, 0.5e-3);
+  s.spacing = 1e-4;
+  const ParticleCloud c = generate_particles(s);
+  Material mat = elastic_aluminium();
+  mat.damage.initiation = DamageInitiation::johnson_cook;
+  mat.damage.jc = {0.1, 0.0, 0.0, 0.0, 0.0};
+  ModelSwitches sw;
+  sw.adiabatic_heating = false;
+  for (bool deactivate : {false, true}) {
+    SphSettings st;
+    st.deactivate_failed = deactivate;
+    NodeSet nodes;
+    SphBody body = make_sph_body("cube", c, mat, sw, st, {}, Vec3::Zero(), 300.0, 1, nodes);
+    const int failed = 62;  // an interior particle
+    body.state[failed].D = mat.damage.D_max;
+    const SphStepResult r = sph_internal_forces(body, nodes, 1e-9);
+    if (!deactivate) {
+      EXPECT_TRUE(r.deactivated.empty());
+      EXPECT_EQ(body.active[failed], 1);
+      continue;
+    }
+    ASSERT_EQ(r.deactivated, std::vector<int>{failed});
+    EXPECT_EQ(body.P[failed].norm(), 0.0);
+    const SphStepResult next = sph_internal_forces(body, nodes, 1e-9);
+    EXPECT_TRUE(next.reference_updated);
+    for (std::size_t k = 0; k < body.pairs.num_pairs(); ++k) EXPECT_NE(body.pairs.j[k], failed);
+    EXPECT_EQ(body.pairs.offsets[failed + 1] - body.pairs.offsets[failed], 0);
+  }
 }
 
 // Pair forces conserve linear and angular momentum exactly (to round-off)
