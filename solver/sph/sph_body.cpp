@@ -97,11 +97,11 @@ void sph_build_reference(SphBody& b) {
   const std::size_t n = b.size();
   b.pairs = find_neighbours(b.X, b.h, b.planes, b.active);
   const std::size_t np = b.pairs.num_pairs();
-  b.pair_reverse.assign(np, -1);
+  std::vector<int> reverse(np, -1);  // index of the reverse pair (j, i, op)
   b.pair_grad.assign(np, Vec3::Zero());
   b.pair_dX.assign(np, Vec3::Zero());
-  b.pair_w.assign(np, 0.0);
-  b.pair_dw.assign(np, 0.0);
+  b.pair_w.assign(np, 0.0f);
+  b.pair_dw.assign(np, 0.0f);
   b.null_projector.assign(n, Mat3::Zero());
 
   const long long count = static_cast<long long>(n);
@@ -118,8 +118,8 @@ void sph_build_reference(SphBody& b) {
       const double r0 = dX.norm();
       const KernelValue kv = kernel(b.settings.kernel, r0, 0.5 * (b.h[i] + b.h[j]));
       b.pair_dX[kk] = dX;
-      b.pair_w[kk] = kv.w;
-      b.pair_dw[kk] = kv.dw_dr;
+      b.pair_w[kk] = static_cast<float>(kv.w);
+      b.pair_dw[kk] = static_cast<float>(kv.dw_dr);
       b.pair_grad[kk] = (-kv.dw_dr / r0) * dX;  // uncorrected for now
       C.noalias() += b.volume_ref[j] * dX * b.pair_grad[kk].transpose();
       // Reverse pair (j, i, op) in j's list, sorted by (op, j).
@@ -129,7 +129,7 @@ void sph_build_reference(SphBody& b) {
       for (const int* p = first; p != last; ++p) {
         const std::size_t at = static_cast<std::size_t>(p - first);
         if (op_first[at] == op && *p == static_cast<int>(i)) {
-          b.pair_reverse[kk] = b.pairs.offsets[j] + static_cast<int>(at);
+          reverse[kk] = b.pairs.offsets[j] + static_cast<int>(at);
           break;
         }
       }
@@ -167,8 +167,11 @@ void sph_build_reference(SphBody& b) {
       b.pair_grad[kk] = B * b.pair_grad[kk];
     }
   }
-  for (int r : b.pair_reverse) {
+  b.pair_grad_rev.resize(np);
+  for (std::size_t k = 0; k < np; ++k) {
+    const int r = reverse[k];
     if (r < 0) throw std::logic_error("SPH reference: neighbour lists are not symmetric");
+    b.pair_grad_rev[k] = b.pair_grad[static_cast<std::size_t>(r)];
   }
   b.F.assign(n, Mat3::Identity());
   b.Fdot.assign(n, Mat3::Zero());
@@ -357,7 +360,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       const std::size_t gj = b.node_begin + j;
       const double Vj = b.volume_ref[j];
       const Vec3& dX = b.pair_dX[kk];
-      Vec3 pj = b.P[j] * b.pair_grad[static_cast<std::size_t>(b.pair_reverse[kk])];
+      Vec3 pj = b.P[j] * b.pair_grad_rev[kk];
       Vec3 xj = nodes.x[gj], vj = nodes.v[gj];
       Vec3 Fj_dX;  // (S F_j S) dX = S F_j (S dX)
       const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
@@ -386,7 +389,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
         const double hij = 0.5 * (h_i + b.h[j]);
         const double mu = hij * vx / (r_sq + 0.01 * hij * hij);
         const double Pi = (-alpha * c * mu + beta * mu * mu) / (0.5 * (rho_i + b.rho[j]));
-        central = mi * nodes.mass[gj] * Pi * b.pair_dw[kk];
+        central = mi * nodes.mass[gj] * Pi * static_cast<double>(b.pair_dw[kk]);
         max_mu = std::max(max_mu, -mu);
       }
       f_visc += (central * inv_r) * x_ij;
@@ -396,7 +399,9 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
         const Vec3 eps = 0.5 * (Fi * dX + Fj_dX) - x_ij;
         const double delta = eps.dot(x_ij) * inv_r;
         const double E_ij = 0.5 * (E_i + b.E_hg[j]);
-        f_hg -= (c_hg * E_ij * Vi * Vj * b.pair_w[kk] * delta / dX.squaredNorm() * inv_r) * x_ij;
+        f_hg -= (c_hg * E_ij * Vi * Vj * static_cast<double>(b.pair_w[kk]) * delta /
+                 dX.squaredNorm() * inv_r) *
+                x_ij;
       }
     }
     nodes.f[gi] += f_stress + f_visc + f_hg;

@@ -27,7 +27,7 @@
 // volume), then P_i = det(F_i) sigma_i F_i^-T (first Piola-Kirchhoff).
 // Forces, the gradient of sum_i V_i W(F_i) (so they conserve linear and angular
 // momentum, sigma being symmetric):
-//   f_i = sum_j V_i V_j (P_i gc_ij - S P_j gc_ji)    (gc_ji: the reverse pair (j, i, op))
+//   f_i = sum_j V_i V_j (P_i gc_ij - S P_j gc_ji)    (gc_ji: of the reverse pair (j, i, op))
 // Monaghan artificial viscosity (Monaghan 1992), between approaching pairs
 // (v_ij . x_ij < 0, x_ij = op(x_j) - x_i, v_ij = S v_j - v_i, r = |x_ij|):
 //   mu_ij = h_ij v_ij . x_ij / (r^2 + 0.01 h_ij^2),  m/s
@@ -111,11 +111,11 @@ struct SphBody {
   std::vector<Mat3> F_ref;           // deformation of the reference from the initial state, -
   std::vector<double> h;             // smoothing lengths, m
   NeighbourList pairs;               // reference neighbours (local indices)
-  std::vector<int> pair_reverse;     // index of the reverse pair (j, i, op)
   std::vector<Vec3> pair_grad;       // corrected gradient gc_ij, 1/m^4
+  std::vector<Vec3> pair_grad_rev;   // gc_ji of the reverse pair (a copy, read in order), 1/m^4
   std::vector<Vec3> pair_dX;         // op(X_j) - X_i, m
-  std::vector<double> pair_w;        // W(r0, h_ij), 1/m^3
-  std::vector<double> pair_dw;       // W'(r0, h_ij), 1/m^4
+  std::vector<float> pair_w;         // W(r0, h_ij), 1/m^3 (float: read by the
+  std::vector<float> pair_dw;        //   stabilising terms only), W'(r0, h_ij), 1/m^4
   std::vector<Mat3> null_projector;  // I - C^+ C (zero unless C_i is singular)
   long long reference_updates = 0;   // count of updates so far
   bool update_pending = false;       // forces an update at the next call
