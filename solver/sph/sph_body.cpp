@@ -80,7 +80,7 @@ inline void deformation(const SphBody& b, const NodeSet& nodes, std::size_t i, M
     const std::size_t kk = static_cast<std::size_t>(k);
     const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
     const std::uint8_t op = b.pairs.op[kk];
-    const Vec3 g = b.volume_ref[j] * b.pair_grad[kk];
+    const Vec3& g = b.pair_grad[kk];
     Vec3 xj = nodes.x[base + j], vj = nodes.v[base + j];
     if (op != 0) {
       xj = mirror_point(b.planes, op, xj);
@@ -118,7 +118,7 @@ void sph_build_reference(SphBody& b) {
       const double r0 = dX.norm();
       const KernelValue kv = kernel(b.settings.kernel, r0, 0.5 * (b.h[i] + b.h[j]));
       b.pair_dX[kk] = dX;
-      b.pair_w[kk] = static_cast<float>(kv.w);
+      b.pair_w[kk] = static_cast<float>(b.volume_ref[j] * kv.w);
       b.pair_dw[kk] = static_cast<float>(kv.dw_dr);
       b.pair_grad[kk] = (-kv.dw_dr / r0) * dX;  // uncorrected for now
       C.noalias() += b.volume_ref[j] * dX * b.pair_grad[kk].transpose();
@@ -164,7 +164,8 @@ void sph_build_reference(SphBody& b) {
     }
     for (int k = begin; k < end; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
-      b.pair_grad[kk] = B * b.pair_grad[kk];
+      b.pair_grad[kk] =
+          b.volume_ref[static_cast<std::size_t>(b.pairs.j[kk])] * (B * b.pair_grad[kk]);
     }
   }
   b.pair_grad_rev.resize(np);
@@ -209,7 +210,7 @@ SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const
   b.F_ref.assign(n, Mat3::Identity());
   b.h.assign(n, h0);
   b.state.resize(n);
-  b.P.assign(n, Mat3::Zero());
+  b.VP.assign(n, Mat3::Zero());
   b.dt_bound.assign(n, infinity);
   b.active.assign(n, 1);
   for (std::size_t i = 0; i < n; ++i) {
@@ -281,14 +282,14 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   std::vector<std::uint8_t> failed(n, 0);
   for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
     if (!b.active[i]) {
-      b.P[i].setZero();
+      b.VP[i].setZero();
       return;
     }
     const Mat3& F = b.F[i];
     const double detF = F.determinant();
     if (!(detF > 0.0)) {
       ++s.inverted;
-      b.P[i].setZero();
+      b.VP[i].setZero();
       return;
     }
     PointState& st = b.state[i];
@@ -306,7 +307,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       s.failed = s.failed || !r.converged;
       if (can_fail && st.D >= dm.D_max - 1e-12) failed[i] = 1;
     }
-    b.P[i] = detF * st.cauchy() * F.inverse().transpose();
+    b.VP[i] = (b.volume_ref[i] * detF) * st.cauchy() * F.inverse().transpose();
   });
   for (const BlockSums& s : blocks) {
     result.max_return_iterations = std::max(result.max_return_iterations, s.max_iterations);
@@ -316,7 +317,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   for (std::size_t i = 0; i < n; ++i) {
     if (failed[i]) {
       b.active[i] = 0;
-      b.P[i].setZero();
+      b.VP[i].setZero();
       result.deactivated.push_back(static_cast<int>(i));
       b.update_pending = true;
     }
@@ -349,7 +350,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     const double rho_i = b.rho[i];
     const double E_i = b.E_hg[i];
     const double h_i = b.h[i];
-    const Mat3& Pi_ = b.P[i];
+    const Mat3& VPi = b.VP[i];
     const Mat3& Fi = b.F[i];
     Vec3 f_stress = Vec3::Zero(), f_visc = Vec3::Zero(), f_hg = Vec3::Zero();
     double r_min = infinity, max_mu = 0.0;
@@ -358,9 +359,8 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       const std::size_t kk = static_cast<std::size_t>(k);
       const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
       const std::size_t gj = b.node_begin + j;
-      const double Vj = b.volume_ref[j];
       const Vec3& dX = b.pair_dX[kk];
-      Vec3 pj = b.P[j] * b.pair_grad_rev[kk];
+      Vec3 pj = b.VP[j] * b.pair_grad_rev[kk];
       Vec3 xj = nodes.x[gj], vj = nodes.v[gj];
       Vec3 Fj_dX;  // (S F_j S) dX = S F_j (S dX)
       const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
@@ -372,7 +372,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       } else {
         Fj_dX = b.F[j] * dX;
       }
-      f_stress += (Vi * Vj) * (Pi_ * b.pair_grad[kk] - pj);
+      f_stress += VPi * b.pair_grad[kk] - pj;
       if (!b.active[j]) continue;
 
       const Vec3 x_ij = xj - xi;
@@ -399,8 +399,8 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
         const Vec3 eps = 0.5 * (Fi * dX + Fj_dX) - x_ij;
         const double delta = eps.dot(x_ij) * inv_r;
         const double E_ij = 0.5 * (E_i + b.E_hg[j]);
-        f_hg -= (c_hg * E_ij * Vi * Vj * static_cast<double>(b.pair_w[kk]) * delta /
-                 dX.squaredNorm() * inv_r) *
+        f_hg -= (c_hg * E_ij * Vi * static_cast<double>(b.pair_w[kk]) * delta / dX.squaredNorm() *
+                 inv_r) *
                 x_ij;
       }
     }

@@ -111,10 +111,10 @@ struct SphBody {
   std::vector<Mat3> F_ref;           // deformation of the reference from the initial state, -
   std::vector<double> h;             // smoothing lengths, m
   NeighbourList pairs;               // reference neighbours (local indices)
-  std::vector<Vec3> pair_grad;       // corrected gradient gc_ij, 1/m^4
-  std::vector<Vec3> pair_grad_rev;   // gc_ji of the reverse pair (a copy, read in order), 1/m^4
+  std::vector<Vec3> pair_grad;       // V_j gc_ij (corrected gradient times volume), 1/m
+  std::vector<Vec3> pair_grad_rev;   // V_i gc_ji of the reverse pair (a copy, in order), 1/m
   std::vector<Vec3> pair_dX;         // op(X_j) - X_i, m
-  std::vector<float> pair_w;         // W(r0, h_ij), 1/m^3 (float: read by the
+  std::vector<float> pair_w;         // V_j W(r0, h_ij), - (float: read by the
   std::vector<float> pair_dw;        //   stabilising terms only), W'(r0, h_ij), 1/m^4
   std::vector<Mat3> null_projector;  // I - C^+ C (zero unless C_i is singular)
   long long reference_updates = 0;   // count of updates so far
@@ -124,7 +124,7 @@ struct SphBody {
   std::vector<PointState> state;     // material state
   std::vector<Mat3> F;               // deformation gradient from the reference, -
   std::vector<Mat3> Fdot;            // its rate, 1/s
-  std::vector<Mat3> P;               // first Piola-Kirchhoff stress, Pa
+  std::vector<Mat3> VP;              // reference volume times first Piola-Kirchhoff stress, N m
   std::vector<double> dt_bound;      // per-particle time-step bound, s
   std::vector<double> rho;           // current density, kg/m^3
   std::vector<double> E_hg;          // hourglass modulus, Pa
