@@ -147,6 +147,19 @@ int symmetry_component(std::uint32_t bit) {
   return -1;
 }
 
+// A rigid spin w about the centre of mass of nodes [first, end): v += w x (x - x_c).
+void add_spin(NodeSet& nodes, std::size_t first, const Vec3& w) {
+  if (w == Vec3::Zero()) return;
+  Vec3 moment = Vec3::Zero();
+  double mass = 0.0;
+  for (std::size_t i = first; i < nodes.size(); ++i) {
+    moment += nodes.mass[i] * nodes.x[i];
+    mass += nodes.mass[i];
+  }
+  const Vec3 centre = moment / mass;
+  for (std::size_t i = first; i < nodes.size(); ++i) nodes.v[i] += w.cross(nodes.x[i] - centre);
+}
+
 }  // namespace
 
 Vec3 to_user_frame(const Model& model, const Vec3& v) {
@@ -214,6 +227,7 @@ Model build_model(const Scene& scene) {
         tags.push_back(mesh.face_boundary[k]);
       }
       face_counts.push_back(4);
+      add_spin(model.nodes, first_node, b.angular_velocity);
     }
     model.meshes.push_back(std::move(info));
     body_faces.push_back(std::move(faces));

@@ -18,6 +18,10 @@ const char* to_string(RunOutcome outcome) {
       return "cancelled";
     case RunOutcome::error:
       return "error";
+    case RunOutcome::stick:
+      return "stick";
+    case RunOutcome::rebound:
+      return "rebound";
   }
   return "error";
 }
@@ -30,6 +34,10 @@ nlohmann::json vec(const Vec3& v) {
 
 nlohmann::json path_or_null(const std::string& p) {
   return p.empty() ? nlohmann::json(nullptr) : nlohmann::json(p);
+}
+
+nlohmann::json number_or_null(const std::optional<double>& x) {
+  return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
 }
 
 }  // namespace
@@ -67,6 +75,20 @@ nlohmann::json to_json(const RunSummary& s) {
                            {"max_temperature", b.max_temperature},
                            {"extent_min", vec(b.extent_min)},
                            {"extent_max", vec(b.extent_max)}});
+  }
+  if (s.two_mass) {
+    const TwoMassSummary& t = *s.two_mass;
+    j["separation_velocity"] = number_or_null(t.separation_velocity);
+    j["two_mass"] = {{"separation_velocity", number_or_null(t.separation_velocity)},
+                     {"release_time", number_or_null(t.release_time)},
+                     {"final_velocity_M", t.final_velocity_M},
+                     {"final_velocity_m", t.final_velocity_m},
+                     {"final_gap", t.final_gap},
+                     {"link_state", t.link_state},
+                     {"link_work", t.link_work},
+                     {"work_budget", t.work_budget},
+                     {"max_link_force", t.max_link_force},
+                     {"dt", t.dt}};
   }
   j["output"] = {{"hdf5", path_or_null(s.hdf5_path)}, {"xdmf", path_or_null(s.xdmf_path)}};
   return j;

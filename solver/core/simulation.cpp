@@ -185,7 +185,10 @@ std::optional<std::pair<RunOutcome, std::string>> Simulation::Impl::checks(
     return std::pair{RunOutcome::unstable,
                      "non-finite state (NaN or infinity) at step " + std::to_string(step)};
   }
-  const double dt_floor = ts.min_time_step > 0.0 ? ts.min_time_step : 1e-6 * dt_first;
+  // Default floor: a thousandth of the first step. Below it a run would need
+  // a thousand times its planned step count, which only a crushed (tangled)
+  // element asks for; stopping names the cause instead of running for hours.
+  const double dt_floor = ts.min_time_step > 0.0 ? ts.min_time_step : 1e-3 * dt_first;
   if (ts.stability_coefficient * dt_stable < dt_floor) {
     stop_reason = "time-step-collapse";
     char buf[160];

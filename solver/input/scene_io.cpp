@@ -8,6 +8,7 @@
 #include <string_view>
 #include <utility>
 
+#include "solver/input/adhesion_io.hpp"
 #include "solver/input/material_io.hpp"
 #include "solver/input/schema.hpp"
 #include "solver/mesh/mesh.hpp"
@@ -369,6 +370,13 @@ BodySpec parse_body(const json& j, const std::string& p, const std::filesystem::
       }
     }
   }
+  if (const auto w = initial.find("angular_velocity"); w != initial.end()) {
+    b.angular_velocity = vec3(*w);
+    if (is_axisymmetric(b.discretization) && b.angular_velocity != Vec3::Zero()) {
+      problems.add(p + "/initial/angular_velocity",
+                   "must be [0, 0, 0] for fe-axisym bodies, which cannot spin (rad/s)");
+    }
+  }
   b.temperature = value_or(initial, "temperature", b.material.strength.T_ref);
   b.seed = value_or(initial, "seed", 1ULL);
 
@@ -409,7 +417,10 @@ json body_to_json(const BodySpec& b) {
       {"geometry", geometry_to_json(b.geometry)},
       {"discretization", std::move(d)},
       {"initial",
-       {{"velocity", to_json_vec(b.velocity)}, {"temperature", b.temperature}, {"seed", b.seed}}},
+       {{"velocity", to_json_vec(b.velocity)},
+        {"angular_velocity", to_json_vec(b.angular_velocity)},
+        {"temperature", b.temperature},
+        {"seed", b.seed}}},
       {"switches",
        {{"damage", b.switches.damage},
         {"thermal_softening", b.switches.thermal_softening},
@@ -526,6 +537,7 @@ json interaction_to_json(const InteractionSpec& in) {
 TimeSpec parse_time(const json& t) {
   TimeSpec ts;
   ts.end_time = t.at("end_time").get<double>();
+  ts.dt = value_or(t, "dt", 0.0);
   ts.stability_coefficient = value_or(t, "stability_coefficient", ts.stability_coefficient);
   ts.max_steps = value_or(t, "max_steps", ts.max_steps);
   ts.min_time_step = value_or(t, "min_time_step", ts.min_time_step);
@@ -534,13 +546,46 @@ TimeSpec parse_time(const json& t) {
   return ts;
 }
 
-json time_to_json(const TimeSpec& ts) {
-  return {{"end_time", ts.end_time},
-          {"stability_coefficient", ts.stability_coefficient},
-          {"max_steps", ts.max_steps},
-          {"min_time_step", ts.min_time_step},
-          {"wall_clock_limit", ts.wall_clock_limit},
-          {"energy_balance_limit", ts.energy_balance_limit}};
+json time_to_json(const TimeSpec& ts, bool two_mass) {
+  json j{{"end_time", ts.end_time},
+         {"stability_coefficient", ts.stability_coefficient},
+         {"max_steps", ts.max_steps},
+         {"min_time_step", ts.min_time_step},
+         {"wall_clock_limit", ts.wall_clock_limit},
+         {"energy_balance_limit", ts.energy_balance_limit}};
+  if (two_mass) j["dt"] = ts.dt;
+  return j;
+}
+
+// ---------------------------------------------------------------- two-mass scenes
+
+TwoMassSpec parse_two_mass(const json& j, const TimeSpec& time, Problems& problems) {
+  TwoMassSpec t;
+  t.M = j.at("M").get<double>();
+  t.m = j.at("m").get<double>();
+  t.k = j.at("k").get<double>();
+  t.V0 = j.at("V0").get<double>();
+  t.area = j.at("area").get<double>();
+  t.adhesion = adhesion_from_json(j.at("adhesion"));
+  if (t.adhesion.activation != ActivationRule::none) {
+    problems.add("/two_mass/adhesion/activation/rule",
+                 "must be \"none\": rigid masses have no yield stress to drop");
+  }
+  // Central differences on the spring are stable for dt < 2 / omega.
+  if (t.k > 0.0 && time.dt > 0.0) {
+    const double dt_max = 2.0 * std::sqrt(t.m / t.k);
+    if (!(time.dt < dt_max)) {
+      problems.add("/time/dt", "must be < 2 sqrt(m / k) = " + std::to_string(dt_max) +
+                                   " for a stable spring (s)");
+    }
+  }
+  if (time.dt > time.end_time) problems.add("/time/dt", "must be <= end_time (s)");
+  return t;
+}
+
+json two_mass_to_json(const TwoMassSpec& t) {
+  return {{"M", t.M},   {"m", t.m},       {"k", t.k},
+          {"V0", t.V0}, {"area", t.area}, {"adhesion", adhesion_to_json(t.adhesion)}};
 }
 
 OutputSpec parse_output(const json& o, double end_time, Problems& problems) {
@@ -578,6 +623,12 @@ json output_to_json(const OutputSpec& out) {
 
 json scene_to_resolved_json(const Scene& scene) {
   json j{{"name", scene.name}, {"description", scene.description}};
+  if (scene.two_mass) {
+    j["two_mass"] = two_mass_to_json(*scene.two_mass);
+    j["time"] = time_to_json(scene.time, true);
+    j["output"] = output_to_json(scene.output);
+    return j;
+  }
   j["bodies"] = json::array();
   for (const BodySpec& b : scene.bodies) j["bodies"].push_back(body_to_json(b));
   j["boundary_conditions"] = json::array();
@@ -588,7 +639,7 @@ json scene_to_resolved_json(const Scene& scene) {
   for (const InteractionSpec& in : scene.interactions) {
     j["interactions"].push_back(interaction_to_json(in));
   }
-  j["time"] = time_to_json(scene.time);
+  j["time"] = time_to_json(scene.time, false);
   j["output"] = output_to_json(scene.output);
   return j;
 }
@@ -681,6 +732,26 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
   scene.name = doc.at("name").get<std::string>();
   scene.description = value_or(doc, "description", std::string());
 
+  if (const auto tm = doc.find("two_mass"); tm != doc.end()) {
+    for (const char* key : {"bodies", "boundary_conditions", "interactions"}) {
+      if (doc.contains(key)) {
+        problems.add(at("", key), "a two_mass scene has no " + std::string(key) +
+                                      "; give either two_mass or bodies");
+      }
+    }
+    scene.time = parse_time(doc.at("time"));
+    scene.two_mass = parse_two_mass(*tm, scene.time, problems);
+    scene.output = parse_output(member_or_empty(doc, "output"), scene.time.end_time, problems);
+    if (!scene.output.snapshot_times.empty()) {
+      problems.add("/output",
+                   "a two_mass scene has no field snapshots (its histories are in the "
+                   "result file); remove snapshot_times / snapshot_count");
+    }
+    if (!problems.list.empty()) throw InputError(std::move(problems.list));
+    loaded.resolved = scene_to_resolved_json(scene);
+    return loaded;
+  }
+
   const json& bodies = doc.at("bodies");
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string p = at("/bodies", i);
@@ -715,6 +786,10 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
         parse_interaction(interactions[i], at("/interactions", i), scene, axisym, problems));
   }
   scene.time = parse_time(doc.at("time"));
+  if (scene.time.dt != 0.0) {
+    problems.add("/time/dt",
+                 "only two_mass scenes take a fixed time step; FE scenes use the stability bound");
+  }
   scene.output = parse_output(member_or_empty(doc, "output"), scene.time.end_time, problems);
 
   if (!problems.list.empty()) throw InputError(std::move(problems.list));

@@ -39,8 +39,12 @@ struct PointState {
   double sigma_y_static = 0.0;  // (1 - D)(A + B eps_p^n)(1 - T*^m): yield stress at zero
                                 // plastic rate; eps_p, T and D change only in plastic steps,
                                 // so an elastic step needs no Johnson-Cook evaluation, Pa
-  double sigma_y_peak = 0.0;    // largest sigma_y seen, Pa
+  double sigma_y_peak = 0.0;    // largest sigma_y seen (rate-dependent), Pa
   double plastic_work = 0.0;    // plastic work per unit reference volume, J/m^3
+
+  // Largest sigma_y_static seen, Pa: the rate-free reference of the adhesion
+  // activation test (solver/adhesion/cohesive_law.hpp).
+  double sigma_y_static_peak = 0.0;
 
   Mat3 cauchy() const { return s - p * Mat3::Identity(); }
 };

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/adhesion/cohesive_law.hpp"
 #include "solver/common/types.hpp"
 #include "solver/material/material.hpp"
 
@@ -53,9 +54,10 @@ struct BodySpec {
   double element_size = 0.0;  // m
   SectorKind sector = SectorKind::full;
   GradingSpec grading;
-  Vec3 velocity = Vec3::Zero();  // initial velocity, m/s
-  double temperature = 300.0;    // initial temperature, K
-  unsigned long long seed = 1;   // seed of the random initial damage
+  Vec3 velocity = Vec3::Zero();          // initial velocity, m/s
+  Vec3 angular_velocity = Vec3::Zero();  // initial spin about the centre of mass, rad/s (3D)
+  double temperature = 300.0;            // initial temperature, K
+  unsigned long long seed = 1;           // seed of the random initial damage
   ModelSwitches switches;
   HourglassType hourglass = HourglassType::viscous;
   double hourglass_coefficient = 0.1;  // -
@@ -88,6 +90,7 @@ struct InteractionSpec {
 
 struct TimeSpec {
   double end_time = 0.0;               // s
+  double dt = 0.0;                     // s; fixed time step of two-mass scenes; 0 = default
   double stability_coefficient = 0.9;  // fraction of the CFL bound, -
   long long max_steps = 10'000'000;    // -
   double min_time_step = 0.0;          // s; below it the run ends `unstable`; 0 = 1e-6 of the first
@@ -100,9 +103,24 @@ struct OutputSpec {
   double history_interval = 0.0;       // s; 0 = every step
 };
 
+// The two-mass adhesion problem (thesis 3.5.1.1): a rigid mass M moving at V0
+// along +x touches, at t = 0, a rigid mass m that rests on a spring of
+// stiffness k (rest position x = 0); the collision is elastic and the pair
+// is then joined by the cohesive law over `area`. Sketch:
+//     M --V0-->  (touching at t = 0)  m --/\/\/\-- wall   (spring k)
+struct TwoMassSpec {
+  double M = 0.0;     // mass of the moving body, kg
+  double m = 0.0;     // mass of the body on the spring, kg
+  double k = 0.0;     // spring stiffness, N/m (0: free mass)
+  double V0 = 0.0;    // speed of M towards m at first touch, m/s
+  double area = 0.0;  // adhesive area of the link, m^2
+  AdhesionParams adhesion;
+};
+
 struct Scene {
   std::string name;
   std::string description;
+  std::optional<TwoMassSpec> two_mass;  // set: a two-mass scene, no bodies
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundaries;
   std::vector<InteractionSpec> interactions;
