@@ -189,6 +189,7 @@ void run_internal_forces(benchmark::State& state, bool axisymmetric, bool plasti
 void run_material(benchmark::State& state, bool axisymmetric, bool plastic) {
   Block b = make_block(axisymmetric, plastic);
   FeBody& body = b.body;
+  long long iterations = 0;
   const double cpu0 = process_cpu_seconds(), wall0 = wall_seconds();
   for (auto _ : state) {
     const Mat3 D = 0.5 * (b.L + b.L.transpose());  // no spin in uniaxial compression
@@ -197,6 +198,7 @@ void run_material(benchmark::State& state, bool axisymmetric, bool plastic) {
       PointUpdateResult r =
           update_point(body.material, body.constants, body.switches, st, b.dt * D,
                        body.volume[e] / body.volume0[e], b.dt, body.char_length[e]);
+      iterations += r.iterations;
       benchmark::DoNotOptimize(r);
     }
     if (!plastic) b.L = -b.L;
@@ -204,6 +206,9 @@ void run_material(benchmark::State& state, bool axisymmetric, bool plastic) {
   const double cpu = process_cpu_seconds() - cpu0, wall = wall_seconds() - wall0;
   per_unit_counters(state, "point_update", cpu, wall, 1, body.num_elements());
   state.counters["plastic_fraction"] = plastic_fraction(body);
+  state.counters["mean_return_iterations"] =
+      static_cast<double>(iterations) /
+      (static_cast<double>(state.iterations()) * static_cast<double>(body.num_elements()));
 }
 
 void BM_hex8_plastic(benchmark::State& state) {

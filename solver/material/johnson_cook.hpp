@@ -44,6 +44,8 @@ FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwit
 struct ReturnMapResult {
   double delta_eps_p = 0.0;  // plastic strain increment, -
   double hard_rate = 0.0;    // (A + B eps_p^n)(1 + C ln eps_dot*) at the solution, Pa
+  double hard = 0.0;         // A + B (eps_p + dp)^n at the solution, Pa
+  double rate = 1.0;         // 1 + C ln max(eps_dot*, 1) at the solution, -
   int iterations = 0;        // Newton or bisection iterations used
   bool converged = true;
 };
