@@ -68,7 +68,7 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     const double ep = eps_p + dp;
     double hard = jc.A, d_hard = 0.0;
     if (ep > 0.0) {
-      const double pw = std::pow(ep, jc.n);
+      const double pw = std::exp(jc.n * std::log(ep));  // ep^n: exp and log cost less than pow
       hard += jc.B * pw;
       d_hard = jc.B * jc.n * pw / ep;
     }
