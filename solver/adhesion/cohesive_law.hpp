@@ -107,10 +107,13 @@ inline bool side_yield_dropped(const AdhesionParams& p, const SideYield& s) {
   return s.sigma_y_static <= (1.0 - p.yield_drop) * s.sigma_y_static_peak;
 }
 
+// A side without material (a rigid body): its yield stress never drops
+// (for yield_drop > 0), so `both` can never activate against it.
+inline constexpr SideYield rigid_side{1.0, 1.0};
+
 // Activation test of thesis 2.2.2 for a pair with sides a and b: always true
 // for ActivationRule::none; for yield_drop, the drop on either side or on both
-// (ActivationSides). A rigid side (no material) passes no SideYield: use the
-// other side with `either`, or treat it as never dropping.
+// (ActivationSides).
 inline bool activation_met(const AdhesionParams& p, const SideYield& a, const SideYield& b) {
   if (p.activation == ActivationRule::none) return true;
   const bool da = side_yield_dropped(p, a);

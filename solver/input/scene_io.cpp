@@ -1,5 +1,7 @@
 #include "solver/input/scene_io.hpp"
 
+#include "solver/input/impact_scene.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,6 +11,7 @@
 #include <utility>
 
 #include "solver/input/adhesion_io.hpp"
+#include "solver/input/impact_scene.hpp"
 #include "solver/input/material_io.hpp"
 #include "solver/input/schema.hpp"
 #include "solver/mesh/mesh.hpp"
@@ -782,6 +785,21 @@ void apply_override(json& doc, const std::string& text) {
 
 LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
   validate_or_throw("scene", doc);
+  if (doc.contains("particle_impact") && !doc.contains("bodies") && !doc.contains("two_mass")) {
+    const ExpandedImpact expanded = expand_particle_impact(doc);
+    LoadedScene loaded = read_scene(expanded.scene, base_dir);
+    const json& block = expanded.scene.at("particle_impact");
+    ImpactSpec impact;
+    impact.substrate = expanded.choice.rigid_substrate ? "" : "substrate";
+    impact.velocity = block.at("velocity").get<double>();
+    impact.angle = block.value("angle", 0.0);
+    impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
+    impact.model = expanded.choice.model;
+    impact.why = expanded.choice.why;
+    loaded.scene.impact = impact;
+    loaded.resolved["particle_impact"] = block;
+    return loaded;
+  }
   Problems problems;
   LoadedScene loaded;
   Scene& scene = loaded.scene;
@@ -798,6 +816,11 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
     scene.time = parse_time(doc.at("time"));
     scene.two_mass = parse_two_mass(*tm, scene.time, problems);
     scene.output = parse_output(member_or_empty(doc, "output"), scene.time.end_time, problems);
+    if (!scene.output.snapshot_times.empty()) {
+      problems.add("/output",
+                   "a two_mass scene has no field snapshots (its histories are in the "
+                   "result file); remove snapshot_times / snapshot_count");
+    }
     if (!problems.list.empty()) throw InputError(std::move(problems.list));
     loaded.resolved = scene_to_resolved_json(scene);
     return loaded;

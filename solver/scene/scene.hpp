@@ -127,10 +127,23 @@ struct TwoMassSpec {
   AdhesionParams adhesion;
 };
 
+// What a particle_impact block asked for and the model it expanded into
+// (solver/input/impact_scene.hpp); the verdict of an impact run reads it.
+struct ImpactSpec {
+  std::string particle = "particle";  // body name
+  std::string substrate;              // body name; empty = rigid wall
+  double velocity = 0.0;              // impact speed, m/s
+  double angle = 0.0;                 // from the substrate normal, deg
+  bool adaptive_end = true;           // stop once the outcome is decided
+  std::string model;                  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full
+  std::string why;                    // why that model, for people
+};
+
 struct Scene {
   std::string name;
   std::string description;
   std::optional<TwoMassSpec> two_mass;  // set: a two-mass scene, no bodies
+  std::optional<ImpactSpec> impact;     // set: expanded from a particle_impact block
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundaries;
   std::vector<InteractionSpec> interactions;

@@ -206,10 +206,31 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
       const bool broken = link == LinkState::exhausted || link == LinkState::eroded;
       run.outcome = broken ? RunOutcome::rebound : RunOutcome::stick;
       run.stop_reason = "end-time";
-      run.reason = broken ? "reached the end time after the link let go (the masses may still "
-                            "meet again)"
-                          : "reached the end time with the link still " +
-                                std::string(to_string(link)) + " (not settled)";
+      const double K_rel = 0.5 * g_dot * g_dot / h;  // relative kinetic energy, J
+      const double W_rem = fig.work_budget - W;
+      if (broken) {
+        run.reason = "reached the end time after the link let go (the masses may still meet again)";
+      } else if (s.k == 0.0 && g_dot > 0.0 && K_rel > W_rem) {
+        // Free masses still opening with more relative kinetic energy than
+        // the link can take: it will let go, at the velocity momentum and
+        // energy give (the closed form of the k = 0 problem).
+        const double g_final = std::sqrt(g_dot * g_dot - 2.0 * h * W_rem);
+        const double u = (s.M * V + s.m * v) / (s.M + s.m);
+        run.outcome = RunOutcome::rebound;
+        run.stop_reason = "end-time-predicted";
+        fig.separation_velocity = -(u - s.m / (s.M + s.m) * g_final);
+        run.reason =
+            "reached the end time before the link let go; with k = 0 it will (relative "
+            "kinetic energy " +
+            std::to_string(K_rel) + " J > remaining budget " + std::to_string(W_rem) +
+            " J): separation velocity from momentum and energy, release time unknown";
+      } else {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, " (not settled: gap %.3e m, opening at %.3e m/s)", gap,
+                      g_dot);
+        run.reason =
+            "reached the end time with the link still " + std::string(to_string(link)) + buf;
+      }
       break;
     }
     if (run.steps >= time.max_steps) {

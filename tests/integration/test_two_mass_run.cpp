@@ -77,6 +77,7 @@ TEST(two_mass_run, bounds_give_a_verdict_or_an_input_error) {
       {"--set /two_mass/V0=0", 0, "stick"},
       {"--set /two_mass/adhesion/G_c=0", 0, "rebound"},
       {"--set /two_mass/area=1e-300", 0, "rebound"},
+      {"--set /two_mass/adhesion/sigma_c=1e-300", 0, "rebound"},  // predicted at the end time
       {"--set /two_mass/adhesion/sigma_c=null --set /two_mass/adhesion/G_c=1", 0, "stick"},
       {"--set /two_mass/k=1e6 --set /two_mass/adhesion/G_c=10", 0, "stick"},
       {"--set /two_mass/k=1e6", 0, "rebound"},

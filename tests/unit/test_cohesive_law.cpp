@@ -52,6 +52,9 @@ TEST(cohesive_law, activation_either_and_both_sides) {
   // The threshold itself counts as a drop: sigma_y <= (1 - x) peak.
   EXPECT_TRUE(side_yield_dropped(either, SideYield{70.0e6, 100.0e6}));
   EXPECT_FALSE(side_yield_dropped(either, SideYield{70.1e6, 100.0e6}));
+  // A rigid side never drops: `either` rests on the other side, `both` never holds.
+  EXPECT_TRUE(activation_met(either, rigid_side, dropped));
+  EXPECT_FALSE(activation_met(both, rigid_side, dropped));
   // Rule none: always met, whatever the yield stresses.
   AdhesionParams none;
   EXPECT_TRUE(activation_met(none, steady, steady));

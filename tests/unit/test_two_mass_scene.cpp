@@ -153,6 +153,10 @@ TEST(two_mass_scene, bad_inputs_name_the_field_and_the_rule) {
   expect_violation(doc, "/boundary_conditions", "a two_mass scene has no boundary_conditions");
 
   doc = two_mass_scene();
+  doc["output"] = {{"snapshot_count", 3}};
+  expect_violation(doc, "/output", "a two_mass scene has no field snapshots");
+
+  doc = two_mass_scene();
   doc.erase("two_mass");
   expect_violation(doc, "/bodies", "required field is missing");
 }

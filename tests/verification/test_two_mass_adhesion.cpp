@@ -103,6 +103,21 @@ TEST(two_mass_adhesion, free_mass_sticks_below_the_threshold_speed) {
   }
 }
 
+// The verdict switches at the closed-form critical speed
+// V* = sqrt(2 G_c A (M + m) / (M m)) (sqrt(0.6) here), whatever the cap.
+TEST(two_mass_adhesion, free_mass_verdict_switches_at_the_critical_speed) {
+  const double V_star = std::sqrt(2.0 * 0.2 * 3.0 / 2.0);
+  for (double F : {0.05, 5.0, k_inf}) {
+    exact::TwoMassCase c = thesis_case(0.0, F);
+    c.V0 = V_star * (1.0 - 1e-3);
+    EXPECT_EQ(run(c, 1e-3).outcome, RunOutcome::stick) << F;
+    c.V0 = V_star * (1.0 + 1e-3);
+    const TwoMassRun r = run(c, 1e-3);
+    EXPECT_EQ(r.outcome, RunOutcome::rebound) << F;
+    EXPECT_NEAR(V_release(r), exact::two_mass_closed_form_k0(c).V_release, 1e-12) << F;
+  }
+}
+
 // The reference itself: with a vanishing spring the event-driven solution
 // must fall back on the closed form.
 TEST(two_mass_adhesion, event_driven_reference_reduces_to_the_closed_form) {
@@ -180,6 +195,41 @@ TEST(two_mass_adhesion, table_3_5) {
                 r0, s1, r1, thesis[i][0], thesis[i][1]);
     EXPECT_NEAR(s0, r0, 1e-12);
     EXPECT_NEAR(s1, r1, 2e-3);
+  }
+}
+
+// Other regimes against the event-driven solution: a heavy impactor that
+// keeps moving forward after the impact, a stiff spring, a weak cap that lets
+// the pair chatter, and a stick. Same verdict, and the same release velocity
+// and final velocity of M (constant once m can no longer reach it) to 1e-3
+// of V0 at dt = 1e-4 s; m keeps oscillating and the two stop at different
+// times, so its velocity is not compared.
+TEST(two_mass_adhesion, other_regimes_match_the_event_driven_solution) {
+  struct Regime {
+    double M, m, k, V0, budget, F;
+  };
+  const Regime regimes[] = {
+      {3.0, 1.0, 2.0, 1.0, 0.1, 1.0},   // M > m: M still moves towards m after the impact
+      {1.0, 2.0, 20.0, 1.0, 0.2, 0.5},  // stiff spring: several oscillations while open
+      {1.0, 1.0, 1.0, 2.0, 0.5, 0.3},   // equal masses: M stops dead at the impact
+      {1.0, 2.0, 0.5, 0.5, 0.2, 0.5},   // slow: the link never lets go
+  };
+  for (const Regime& g : regimes) {
+    exact::TwoMassCase c;
+    c.M = g.M, c.m = g.m, c.k = g.k, c.V0 = g.V0, c.budget = g.budget, c.F_cap = g.F;
+    const exact::TwoMassOutcome ref = exact::two_mass_event_driven(c, 60.0);
+    const TwoMassRun r = run(c, 1e-4, 60.0);
+    std::printf(
+        "M %g m %g k %g V0 %g B %g F %g: reference %s V_M %.6f (t %.4f), final %.6f / %.6f;"
+        " solver %s V_M %.6f, final %.6f / %.6f (%s)\n",
+        g.M, g.m, g.k, g.V0, g.budget, g.F, ref.rebound ? "rebound" : "stick", ref.V_release,
+        ref.release_time, ref.V_final, ref.v_final, to_string(r.outcome), V_release(r),
+        r.figures.final_velocity_M, r.figures.final_velocity_m, r.stop_reason.c_str());
+    EXPECT_EQ(r.outcome == RunOutcome::rebound, ref.rebound);
+    if (ref.rebound) {
+      EXPECT_NEAR(V_release(r), ref.V_release, 1e-3 * g.V0);
+      EXPECT_NEAR(r.figures.final_velocity_M, ref.V_final, 1e-3 * g.V0);
+    }
   }
 }
 
