@@ -18,7 +18,12 @@ ContactInterface::ContactInterface(std::string master_body, std::string slave_bo
       settings_(std::move(settings)),
       axisymmetric_(axisymmetric),
       local_(node_count, -1),
-      touched_(slave_.nodes.size(), 0) {}
+      touched_(slave_.nodes.size(), 0),
+      link_state_(slave_.nodes.size(), LinkState::none),
+      link_work_(slave_.nodes.size(), 0.0),
+      link_area_(slave_.nodes.size(), 0.0),
+      link_face_(slave_.nodes.size(), -1),
+      link_touching_(slave_.nodes.size(), 0) {}
 
 namespace {
 
@@ -36,7 +41,12 @@ std::vector<int> elements_of_node(const FeBody& body, int g) {
 
 }  // namespace
 
-void ContactInterface::attach_bodies(const FeBody& master, const FeBody& slave) {
+void ContactInterface::attach_bodies(const std::vector<FeBody>& bodies, std::size_t mb,
+                                     std::size_t sb) {
+  master_index_ = mb;
+  slave_index_ = sb;
+  const FeBody& master = bodies[mb];
+  const FeBody& slave = bodies[sb];
   slave_elem_offsets_.assign(1, 0);
   slave_elem_entries_.clear();
   for (int g : slave_.nodes) {
@@ -127,41 +137,221 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
   }
 }
 
+double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x) const {
+  const double own = slave_node_area(slave_, k, x);
+  if (master_.kind == DetectionKind::node_on_segment || f < 0) return own;
+  const auto& ids = master_.faces[f];
+  return std::min(own, quad_area({x[ids[0]], x[ids[1]], x[ids[2]], x[ids[3]]}));
+}
+
+// The side's element whose static yield stress has fallen furthest below its
+// peak stands for the side (a node belongs to several elements); damage is
+// the largest of them. Eroded elements are skipped.
+SideYield ContactInterface::slave_side_yield(const FeBody& slave, int k, double& damage) const {
+  SideYield out{1.0, 1.0};
+  double worst = 2.0;
+  damage = 0.0;
+  for (int j = slave_elem_offsets_[k]; j < slave_elem_offsets_[k + 1]; ++j) {
+    const int e = slave_elem_entries_[j];
+    if (!slave.active[e]) continue;
+    const PointState& st = slave.state[e];
+    damage = std::max(damage, st.D);
+    const double ratio =
+        st.sigma_y_static_peak > 0.0 ? st.sigma_y_static / st.sigma_y_static_peak : 1.0;
+    if (ratio < worst) {
+      worst = ratio;
+      out = {st.sigma_y_static, st.sigma_y_static_peak};
+    }
+  }
+  return out;
+}
+
+SideYield ContactInterface::master_side_yield(const FeBody& master, int f, double& damage) const {
+  damage = 0.0;
+  const int e = f >= 0 ? master_face_element_[f] : -1;
+  if (e < 0 || !master.active[e]) return {1.0, 1.0};  // never drops
+  const PointState& st = master.state[e];
+  damage = st.D;
+  return {st.sigma_y_static, st.sigma_y_static_peak};
+}
+
+void ContactInterface::update_links_before_solve(const NodeSet& nodes,
+                                                 const std::vector<FeBody>& bodies) {
+  const AdhesionParams& ap = *settings_.adhesion;
+  const FeBody& master = bodies[master_index_];
+  const FeBody& slave = bodies[slave_index_];
+  for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
+    const LinkState before = link_state_[k];
+    if (before == LinkState::exhausted || before == LinkState::eroded) continue;
+    if (before == LinkState::none && !link_touching_[k]) continue;
+    double d_slave = 0.0, d_master = 0.0;
+    const SideYield ys = slave_side_yield(slave, static_cast<int>(k), d_slave);
+    const SideYield ym = master_side_yield(master, link_face_[k], d_master);
+    LinkEvents ev;
+    ev.touching = link_touching_[k] != 0;
+    ev.activation_met = activation_met(ap, ys, ym);
+    ev.erosion_met = erosion_met(ap, d_slave, d_master);
+    const LinkState after = next_link_state(before, ap.activation, ev);
+    if (after == before) continue;
+    link_state_[k] = after;
+    if (after == LinkState::active) {
+      ++stats_.links_activated;
+      link_area_[k] = adhesive_area(static_cast<int>(k), link_face_[k], nodes.x);
+    }
+    if (after == LinkState::eroded) ++stats_.links_eroded;
+  }
+}
+
 void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
-                                     double dt) {
+                                     double dt, const std::vector<FeBody>& bodies) {
   if (!(dt > 0.0)) return;
+  const bool adhesive = settings_.adhesion.has_value();
   const std::vector<DetectedPair> pairs = detect(nodes.x);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;
-  if (pairs.empty()) return;
-  for (const DetectedPair& p : pairs) {
-    stats_.max_penetration = std::max(stats_.max_penetration, -p.geometry.gap);
+  stats_.links_in_tension = 0;
+  if (adhesive) {
+    for (std::size_t i = 0; i < first_pass_pairs_; ++i) link_face_[pairs[i].slave] = pairs[i].face;
+    update_links_before_solve(nodes, bodies);
+    std::fill(link_touching_.begin(), link_touching_.end(), 0);
   }
-  build_problem(nodes, mask, pairs, dt);
-  const ContactSolution sol = solve_contact(problem_, settings_.solver);
-  stats_.max_iterations = std::max(stats_.max_iterations, sol.iterations);
-  stats_.max_residual = std::max(stats_.max_residual, sol.residual);
-  if (!sol.converged) ++stats_.unconverged;
-  double work = 0.0;
-  for (std::size_t l = 0; l < local_nodes_.size(); ++l) {
-    const int g = local_nodes_[l];
-    const Vec3& dv = sol.dv[l];
-    if (dv.isZero(0.0)) continue;
-    nodes.v[g] += dv;
-    nodes.x[g] += dt * dv;
-    work += nodes.mass[g] * dv.dot(nodes.v[g]);
-  }
-  stats_.work += work * scale();
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    if (sol.p_n[i] > 0.0) {
-      ++stats_.in_contact;
-      if (i < first_pass_pairs_ && !touched_[pairs[i].slave]) {
-        touched_[pairs[i].slave] = 1;
-        ++stats_.ever_in_contact;
+  if (!pairs.empty()) {
+    for (const DetectedPair& p : pairs) {
+      stats_.max_penetration = std::max(stats_.max_penetration, -p.geometry.gap);
+    }
+    build_problem(nodes, mask, pairs, dt);
+    // Active links: tension allowed down to the cap, holding the opening the
+    // pair has at the start of the step, g_n = g_{n+1} - dt C v_{n+1/2}.
+    std::vector<std::size_t> links;
+    if (adhesive) {
+      const AdhesionParams& ap = *settings_.adhesion;
+      for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+        const int k = pairs[i].slave;
+        if (link_state_[k] != LinkState::active) continue;
+        const double rate = normal_rate(problem_, i, problem_.velocity);
+        const double g_n = pairs[i].geometry.gap - dt * rate;
+        problem_.lo[i] = -max_tension(ap, link_area_[k]) * dt;
+        problem_.b_hold[i] = problem_.b[i] + std::max(g_n, 0.0) / dt;
+        links.push_back(i);
       }
     }
+    ContactSolution sol = solve_contact(problem_, settings_.solver);
+    // Work of the links against separation (cohesive_law.hpp): per link, the
+    // opening rate without its own impulse g_free and its inverse mass h give
+    // dW = I (g_free - h I / 2); a link whose budget runs out this step keeps
+    // only the impulse that spends it exactly, and the others are solved again
+    // with that impulse fixed.
+    std::vector<std::uint8_t> exhausted(links.size(), 0);
+    auto link_step = [&](std::size_t j, const ContactSolution& s) {
+      const std::size_t i = links[j];
+      const int k = pairs[i].slave;
+      const double h = normal_inverse_mass(problem_, i);
+      const double I = -s.p_n[i];
+      const double g_free = normal_rate(problem_, i, s.dv) + h * I - problem_.b_hold[i];
+      return cohesive_step(*settings_.adhesion, link_area_[k], link_work_[k], g_free, h, dt, I);
+    };
+    if (!links.empty()) {
+      bool resolve = false;
+      for (std::size_t j = 0; j < links.size(); ++j) {
+        if (!(sol.p_n[links[j]] < 0.0)) continue;
+        const CohesiveStep c = link_step(j, sol);
+        if (c.exhausted) {
+          exhausted[j] = 1;
+          problem_.lo[links[j]] = -c.impulse;
+          resolve = true;
+        }
+      }
+      if (resolve) sol = solve_contact(problem_, settings_.solver);
+      double adhesion_work = 0.0;
+      for (std::size_t j = 0; j < links.size(); ++j) {
+        const int k = pairs[links[j]].slave;
+        if (sol.p_n[links[j]] < 0.0) {
+          ++stats_.links_in_tension;
+          const CohesiveStep c = link_step(j, sol);
+          const double dW =
+              exhausted[j]
+                  ? std::max(work_budget(*settings_.adhesion, link_area_[k]) - link_work_[k], 0.0)
+                  : c.work;
+          link_work_[k] += dW;
+          adhesion_work += dW;
+          if (c.exhausted) exhausted[j] = 1;
+        }
+        if (exhausted[j]) {
+          link_state_[k] = next_link_state(link_state_[k], settings_.adhesion->activation,
+                                           {false, false, false, true});
+          ++stats_.links_exhausted;
+        }
+      }
+      stats_.adhesion_work += adhesion_work * scale();
+    }
+    stats_.max_iterations = std::max(stats_.max_iterations, sol.iterations);
+    stats_.max_residual = std::max(stats_.max_residual, sol.residual);
+    if (!sol.converged) ++stats_.unconverged;
+    for (std::size_t l = 0; l < local_nodes_.size(); ++l) {
+      const int g = local_nodes_[l];
+      const Vec3& dv = sol.dv[l];
+      if (dv.isZero(0.0)) continue;
+      nodes.v[g] += dv;
+      nodes.x[g] += dt * dv;
+    }
+    // Contact work: every impulse (compression, link tension, friction) times
+    // the corrected relative velocity (eq. 1.21), the work of a force held
+    // over the step on the displacement it drives. This, not the link's
+    // budget charge, is the work the energy balance sees.
+    std::vector<Vec3> v_new(local_nodes_.size());
+    for (std::size_t l = 0; l < local_nodes_.size(); ++l) v_new[l] = nodes.v[local_nodes_[l]];
+    double work = 0.0;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (sol.p_n[i] != 0.0) work += sol.p_n[i] * normal_rate(problem_, i, v_new);
+      if (problem_.mu[i] > 0.0) {
+        double st1 = 0.0, st2 = 0.0;
+        for (int k = 0; k < 5; ++k) {
+          const int n = problem_.node[i][k];
+          if (n < 0) continue;
+          st1 += problem_.coef[i][k] * problem_.tangent1[i].dot(v_new[n]);
+          st2 += problem_.coef[i][k] * problem_.tangent2[i].dot(v_new[n]);
+        }
+        work += sol.p_t[i].x() * st1 + sol.p_t[i].y() * st2;
+      }
+    }
+    stats_.work += work * scale();
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (sol.p_n[i] > 0.0) {
+        ++stats_.in_contact;
+        if (i < first_pass_pairs_) {
+          if (!touched_[pairs[i].slave]) {
+            touched_[pairs[i].slave] = 1;
+            ++stats_.ever_in_contact;
+          }
+          if (adhesive) link_touching_[pairs[i].slave] = 1;
+        }
+      }
+    }
+    stats_.max_in_contact = std::max(stats_.max_in_contact, stats_.in_contact);
   }
-  stats_.max_in_contact = std::max(stats_.max_in_contact, stats_.in_contact);
+  if (adhesive) {
+    // An active link whose pair opened beyond the search range (possible
+    // only with a stress cap) has let go: it counts as exhausted.
+    std::vector<std::uint8_t> seen(slave_.nodes.size(), 0);
+    for (std::size_t i = 0; i < first_pass_pairs_; ++i) seen[pairs[i].slave] = 1;
+    for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
+      if (link_state_[k] == LinkState::active && !seen[k]) {
+        link_state_[k] = next_link_state(link_state_[k], settings_.adhesion->activation,
+                                         {false, false, false, true});
+        ++stats_.links_exhausted;
+      }
+    }
+    stats_.links_active = 0;
+    double area = 0.0;
+    for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
+      if (link_state_[k] != LinkState::active) continue;
+      ++stats_.links_active;
+      area += link_area_[k];
+    }
+    stats_.bonded_area = area * scale();
+    stats_.max_bonded_area = std::max(stats_.max_bonded_area, stats_.bonded_area);
+    stats_.max_links_active = std::max(stats_.max_links_active, stats_.links_active);
+  }
 }
 
 void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uint8_t>& mask,

@@ -29,9 +29,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "solver/adhesion/cohesive_law.hpp"
 #include "solver/contact/contact_search.hpp"
 #include "solver/contact/contact_solver.hpp"
 #include "solver/contact/contact_types.hpp"
@@ -51,6 +53,8 @@ struct ContactSettings {
   // and PGS slow (hundreds of sweeps, 2000 without converging in the 3D
   // sphere test), so one pass is the default.
   bool two_pass = false;
+  // Cohesive law on the pairs of the slave nodes (Lagrange, first pass only).
+  std::optional<AdhesionParams> adhesion;
   ContactSolverSettings solver;
   SearchSettings search;
 };
@@ -68,6 +72,16 @@ struct ContactStats {
   long long unconverged = 0;      // steps whose solve hit the iteration limit
   double max_penetration = 0.0;   // m, deepest predicted gap before the correction (Lagrange)
                                   //   or penetration (penalty)
+  // Adhesion (thesis 3.5.3 counts; areas over 2 pi in axisymmetric runs).
+  double adhesion_work = 0.0;      // J, work of the links against separation (>= 0)
+  long long links_activated = 0;   // links that became active
+  long long links_exhausted = 0;   // links whose budget G_c A was spent
+  long long links_eroded = 0;      // links broken by damage (or pairs that could not bond)
+  long long links_active = 0;      // active links now
+  long long max_links_active = 0;  // most active links at one time
+  double bonded_area = 0.0;        // m^2, area of the active links now
+  double max_bonded_area = 0.0;    // m^2
+  long long links_in_tension = 0;  // links that carried tension in the last step
 };
 
 class ContactInterface {
@@ -78,10 +92,12 @@ class ContactInterface {
 
   // Records which elements carry the surfaces (for the adhesion tests on the
   // material state of each side). Call once, with the bodies named above.
-  void attach_bodies(const FeBody& master, const FeBody& slave);
+  void attach_bodies(const std::vector<FeBody>& bodies, std::size_t master, std::size_t slave);
 
   // Stage 3 (Lagrange): corrects v and x of the nodes in contact.
-  void lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask, double dt);
+  // `bodies` are the model's bodies (the adhesion tests read their states).
+  void lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask, double dt,
+                     const std::vector<FeBody>& bodies);
   // Stage 5 (penalty): adds the penalty forces at x_{n+1} to nodes.f.
   void penalty_forces(NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask, double dt);
   // Stage 1, after the velocity update over dt_v: books the work of the
@@ -94,6 +110,12 @@ class ContactInterface {
   const std::string& slave_body() const { return slave_body_; }
   const ContactSurface& master_surface() const { return master_; }
   const ContactSurface& slave_surface() const { return slave_; }
+  // Per slave node (index into slave_surface().nodes): link state, work done
+  // against separation (J; per radian in 2D) and adhesive area (m^2; per
+  // radian in 2D), set when the link activates.
+  const std::vector<LinkState>& link_states() const { return link_state_; }
+  const std::vector<double>& link_work() const { return link_work_; }
+  const std::vector<double>& link_area() const { return link_area_; }
 
  private:
   // Pairs of both passes: slave nodes on master faces first
@@ -104,6 +126,14 @@ class ContactInterface {
                      const std::vector<DetectedPair>& pairs, double dt);
   void release_local_nodes();
   double scale() const;
+  // Link state changes before the solve (activation, erosion, first touch)
+  // from the material state of both sides; sets the areas of new links.
+  void update_links_before_solve(const NodeSet& nodes, const std::vector<FeBody>& bodies);
+  // Adhesive area of slave node k over master face f, m^2 (per radian in 2D).
+  double adhesive_area(int k, int f, const std::vector<Vec3>& x) const;
+  // The yield stresses and damage of each side of slave node k's link.
+  SideYield slave_side_yield(const FeBody& slave, int k, double& damage) const;
+  SideYield master_side_yield(const FeBody& master, int f, double& damage) const;
 
   std::string master_body_, slave_body_;
   ContactSurface master_, slave_;
@@ -121,6 +151,13 @@ class ContactInterface {
   // (CSR) and the master-body element of each master face.
   std::vector<int> slave_elem_offsets_, slave_elem_entries_;
   std::vector<int> master_face_element_;
+  std::size_t master_index_ = 0, slave_index_ = 0;  // in the model's bodies
+  // Adhesion, per slave node (SoA): state, work, area, last master face,
+  // whether it carried a compressive force in the last step.
+  std::vector<LinkState> link_state_;
+  std::vector<double> link_work_, link_area_;
+  std::vector<int> link_face_;
+  std::vector<std::uint8_t> link_touching_;
   // Penalty forces of the last stage 5 and the velocities they will act on.
   std::vector<int> penalty_nodes_;
   std::vector<Vec3> penalty_force_, penalty_v_old_;

@@ -209,6 +209,14 @@ ContactSolution solve_contact(const ContactProblem& problem,
   return sol;
 }
 
+double normal_rate(const ContactProblem& P, std::size_t i, const std::vector<Vec3>& dv) {
+  return row_dot(P, i, P.normal[i], dv);
+}
+
+double normal_inverse_mass(const ContactProblem& P, std::size_t i) {
+  return row_diag(P, i, P.normal[i]);
+}
+
 double contact_violation(const ContactProblem& P, const ContactSolution& s) {
   double worst = 0.0;
   for (std::size_t i = 0; i < P.pairs(); ++i) {

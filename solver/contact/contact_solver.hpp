@@ -83,6 +83,11 @@ struct ContactSolverSettings {
 
 ContactSolution solve_contact(const ContactProblem& problem, const ContactSolverSettings& settings);
 
+// C_i dv along pair i's normal, m/s.
+double normal_rate(const ContactProblem& problem, std::size_t i, const std::vector<Vec3>& dv);
+// H_ii = C_i M^-1 C_i^T along pair i's normal, 1/kg.
+double normal_inverse_mass(const ContactProblem& problem, std::size_t i);
+
 // Largest violation of the complementarity conditions of a solution: the
 // most negative (H p - b)_i over all pairs, and the largest |H p - b|_i over
 // pairs strictly above their lower bound, m/s.

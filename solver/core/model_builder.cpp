@@ -331,6 +331,7 @@ Model build_model(const Scene& scene) {
     cs.friction = it.friction;
     cs.solver.kind = it.solver;
     cs.two_pass = it.two_pass;
+    cs.adhesion = it.adhesion;
     ContactSurface master = surface_of(mb);
     if (it.method == ContactMethod::penalty) {
       cs.penalty_stiffness = it.penalty_stiffness;
@@ -348,7 +349,7 @@ Model build_model(const Scene& scene) {
     }
     model.contacts.emplace_back(it.master, it.slave, std::move(master), surface_of(sb), cs,
                                 model.axisymmetric, n);
-    model.contacts.back().attach_bodies(model.bodies[mb], model.bodies[sb]);
+    model.contacts.back().attach_bodies(model.bodies, mb, sb);
   }
 
   for (std::size_t wi = 0; wi < scene.interactions.size(); ++wi) {

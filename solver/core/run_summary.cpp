@@ -62,7 +62,7 @@ nlohmann::json to_json(const RunSummary& s) {
       {"absorbed", e.absorbed},           {"eroded", e.eroded},
       {"wall_work", e.wall_work},         {"external_work", e.external_work},
       {"contact_work", e.contact_work},   {"contact_stored", e.contact_stored},
-      {"balance_error", e.balance_error}};
+      {"adhesion", e.adhesion},           {"balance_error", e.balance_error}};
   j["bodies"] = nlohmann::json::array();
   for (const BodySummary& b : s.bodies) {
     j["bodies"].push_back({{"name", b.name},
@@ -93,6 +93,16 @@ nlohmann::json to_json(const RunSummary& s) {
                                {"max_solver_residual", c.max_solver_residual},
                                {"unconverged_solves", c.unconverged_solves},
                                {"max_penetration", c.max_penetration}});
+    if (c.adhesion) {
+      j["interfaces"].back()["adhesion"] = {{"work", c.adhesion_work},
+                                            {"links_activated", c.links_activated},
+                                            {"links_exhausted", c.links_exhausted},
+                                            {"links_eroded", c.links_eroded},
+                                            {"links_active", c.links_active},
+                                            {"max_links_active", c.max_links_active},
+                                            {"bonded_area", c.bonded_area},
+                                            {"max_bonded_area", c.max_bonded_area}};
+    }
   }
   if (s.two_mass) {
     const TwoMassSummary& t = *s.two_mass;

@@ -37,6 +37,8 @@ struct EnergyBudget {
   double external_work = 0.0;         // work of prescribed velocities and other constraints
   double contact_work = 0.0;    // work of contact forces on the bodies (<= 0 without adhesion)
   double contact_stored = 0.0;  // energy in penalty contact springs now (part of -contact_work)
+  double adhesion = 0.0;        // charged to the links' budgets G_c A (cohesive_law.hpp), >= 0; the
+                                // links' mechanical work is part of contact_work (see interface)
   double balance_error = 0.0;   // (total now - initial - external - wall - contact) / initial, -
 };
 
@@ -69,6 +71,16 @@ struct InterfaceSummary {
   double max_solver_residual = 0.0;  // m/s
   long long unconverged_solves = 0;
   double max_penetration = 0.0;  // m
+  // Adhesion (thesis 3.5.3); areas of the full body of revolution in 2D.
+  bool adhesion = false;
+  double adhesion_work = 0.0;      // J, dissipated by the links
+  long long links_activated = 0;   // links that became active
+  long long links_exhausted = 0;   // budget G_c A spent
+  long long links_eroded = 0;      // broken by damage
+  long long links_active = 0;      // active at the end (thesis: "at least one active link")
+  long long max_links_active = 0;  // most links active at one time ("stuck" at most)
+  double bonded_area = 0.0;        // m^2, area of the active links at the end
+  double max_bonded_area = 0.0;    // m^2
 };
 
 // Figures of a two-mass run (solver/two_mass/two_mass_model.hpp). Velocities

@@ -90,7 +90,7 @@ void Simulation::Impl::predict_positions() {
 void Simulation::Impl::contact_constraints() {
   for (ContactInterface& c : model.contacts) {
     if (c.settings().method == ContactMethod::lagrange) {
-      c.lagrange_step(model.nodes, model.constraint_mask, dt_half);
+      c.lagrange_step(model.nodes, model.constraint_mask, dt_half, model.bodies);
     }
   }
 }
@@ -187,9 +187,11 @@ void Simulation::Impl::compute_energies() {
   energy.plastic_work = plastic * scale();
   energy.contact_work = 0.0;
   energy.contact_stored = 0.0;
+  energy.adhesion = 0.0;
   for (const ContactInterface& c : model.contacts) {
     energy.contact_work += c.stats().work;
     energy.contact_stored += c.stats().stored;
+    energy.adhesion += c.stats().adhesion_work;
   }
   const double total = energy.kinetic + energy.internal + energy.hourglass +
                        energy.artificial_viscosity + energy.absorbed + energy.eroded;
@@ -394,6 +396,15 @@ void Simulation::Impl::fill_summary(RunSummary& s) const {
     is.max_solver_residual = st.max_residual;
     is.unconverged_solves = st.unconverged;
     is.max_penetration = st.max_penetration;
+    is.adhesion = c.settings().adhesion.has_value();
+    is.adhesion_work = st.adhesion_work;
+    is.links_activated = st.links_activated;
+    is.links_exhausted = st.links_exhausted;
+    is.links_eroded = st.links_eroded;
+    is.links_active = st.links_active;
+    is.max_links_active = st.max_links_active;
+    is.bonded_area = st.bonded_area;
+    is.max_bonded_area = st.max_bonded_area;
     s.interfaces.push_back(is);
   }
   s.hdf5_path = h5_path.empty() ? std::string() : h5_path.string();

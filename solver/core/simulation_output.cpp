@@ -34,6 +34,7 @@ void Simulation::Impl::open_output() {
                                                               {"external_work", "J"},
                                                               {"contact_work", "J"},
                                                               {"contact_stored", "J"},
+                                                              {"adhesion", "J"},
                                                               {"balance_error", "-"}};
   for (const FeBody& body : model.bodies) {
     for (const char* c : {"_vx", "_vy", "_vz"}) columns.emplace_back(body.name + c, "m/s");
@@ -43,6 +44,9 @@ void Simulation::Impl::open_output() {
     const std::string prefix = "contact" + std::to_string(c) + "_";
     columns.emplace_back(prefix + "pairs_in_contact", "-");
     columns.emplace_back(prefix + "work", "J");
+    columns.emplace_back(prefix + "links_active", "-");
+    columns.emplace_back(prefix + "bonded_area", "m^2");
+    columns.emplace_back(prefix + "adhesion_work", "J");
   }
   file = std::make_unique<ResultFile>(h5_path, std::move(topo), std::move(columns));
   file->set_attribute("solver_version", std::string(version()));
@@ -72,6 +76,7 @@ void Simulation::Impl::write_history() {
                              energy.external_work,
                              energy.contact_work,
                              energy.contact_stored,
+                             energy.adhesion,
                              energy.balance_error};
   const NodeSet& n = model.nodes;
   for (const FeBody& body : model.bodies) {
@@ -86,7 +91,9 @@ void Simulation::Impl::write_history() {
     row.insert(row.end(), {vc.x(), vc.y(), vc.z(), kinetic * scale()});
   }
   for (const ContactInterface& c : model.contacts) {
-    row.insert(row.end(), {static_cast<double>(c.stats().in_contact), c.stats().work});
+    const ContactStats& st = c.stats();
+    row.insert(row.end(), {static_cast<double>(st.in_contact), st.work,
+                           static_cast<double>(st.links_active), st.bonded_area, st.adhesion_work});
   }
   file->append_history(row);
 }

@@ -531,6 +531,15 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
     in.friction = value_or(j, "friction", 0.0);
     in.solver = from_name(contact_solver_names, value_or(j, "solver", std::string("pgs")));
     in.two_pass = value_or(j, "two_pass", false);
+    if (const auto a = j.find("adhesion"); a != j.end()) {
+      in.adhesion = adhesion_from_json(*a);
+      if (in.method != ContactMethod::lagrange) {
+        problems.add(at(p, "adhesion"), "needs method \"lagrange\" (the links are multipliers)");
+      }
+      if (in.solver != ContactSolverKind::pgs) {
+        problems.add(at(p, "adhesion"), "needs solver \"pgs\" (bonded rows)");
+      }
+    }
     if (in.friction > 0.0 && in.method == ContactMethod::lagrange &&
         in.solver == ContactSolverKind::active_set) {
       problems.add(at(p, "solver"), "active-set is frictionless: use pgs with friction > 0");
@@ -571,6 +580,7 @@ json interaction_to_json(const InteractionSpec& in) {
            {"friction", in.friction},
            {"solver", name_of(contact_solver_names, in.solver)},
            {"two_pass", in.two_pass}};
+    if (in.adhesion) j["adhesion"] = adhesion_to_json(*in.adhesion);
     if (in.method == ContactMethod::penalty) j["penalty_stiffness"] = in.penalty_stiffness;
     return j;
   }

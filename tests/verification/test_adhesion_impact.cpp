@@ -1,0 +1,235 @@
+// Adhesion on FE contact pairs (thesis 2.2, cohesive law of
+// solver/adhesion/cohesive_law.hpp on every slave node's pair):
+//  - adhesive_cylinder_size_effect (thesis 3.5.1.2): the same elastic
+//    cylinder impact at three sizes (x1, x10, x100) with G_c fixed. Kinetic
+//    energy scales with the volume, the adhesion budget with the area, so the
+//    smallest stays stuck (links still active at the end) and the larger ones
+//    rebound (every link exhausted), faster the larger they are, and slower
+//    than without adhesion (a size-independent run: the model is scale-free
+//    without G_c).
+//  - elastic_rebound_falls_with_sigma_c (thesis 3.5.2.1): the rebound
+//    velocity of an elastic sphere falls as the stress cap sigma_c rises and
+//    reaches a plateau, the uncapped (Griffith) value, once the cap no longer
+//    binds.
+//
+// Scale. The model is scale-free except for G_c (lengths x s is the same as
+// G_c / s). With the cohesive law's discrete work rule (the kinetic energy
+// each link impulse removes, which for a link holding against the elastic
+// rebound is charged every step) the thesis's cylinder (radius 12.5 um,
+// G_c = 0.02 J/m^2) loses all its links and rebounds at 15.2 m/s (15.5 m/s
+// without adhesion; scenes/adhesive_cylinder_axisym.json). The thesis, whose
+// eq. 1.19 charges nothing to a link that holds its pair, kept it stuck. The
+// size effect itself is the same physics at a smaller base size: here the
+// three sizes are 1e-4, 1e-3 and 1e-2 of the thesis's (equivalently
+// G_c = 200 J/m^2 at the thesis's size, 10 and 100 times larger).
+//
+// What the budget charge means here. A link that holds a surface node against
+// the internal forces is charged, every step, the opening kinetic energy the
+// unconstrained velocity update gave the pair and the link took back; in an
+// explicit FE model this recurs each step, so the charged "adhesion energy"
+// is much larger than the energy the links actually take out (measured: the
+// stuck x1 cylinder is charged 18 times its initial kinetic energy; the
+// uncapped sphere 0.56 E0 while its rebound lost 0.30 E0). The energy balance
+// therefore uses the links' mechanical work (impulse times corrected opening
+// rate, in contact_work), not this charge, and stays within 1 %. The
+// qualitative results below hold; the stick/rebound crossover depends on the
+// time step through this charge (as the thesis's did through eq. 1.19/1.21).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "solver/core/run_summary.hpp"
+#include "solver/core/simulation.hpp"
+#include "solver/input/scene_io.hpp"
+#include "solver/input/schema.hpp"
+
+namespace splat {
+namespace {
+
+using nlohmann::json;
+
+RunSummary run_scene(const json& doc) {
+  const LoadedScene loaded = read_scene(doc);
+  SimulationOptions options;
+  options.threads = 1;
+  Simulation sim(loaded.scene, loaded.resolved, options);
+  RunSummary s = sim.run();
+  // The summary with its adhesion records is a valid result document.
+  for (const SchemaViolation& v : validate("result", to_json(s))) ADD_FAILURE() << to_string(v);
+  return s;
+}
+
+json scene_file(const char* name) {
+  return read_json_file(std::string(SPLAT_SOURCE_DIR) + "/scenes/" + name + ".json");
+}
+
+// Every length and the end time times s (the time step follows the mesh).
+void scale_lengths(json& doc, double s) {
+  for (json& b : doc["bodies"]) {
+    json& g = b["geometry"];
+    for (const char* key : {"radius", "r_max", "z_min", "z_max"}) {
+      if (g.contains(key)) g[key] = g[key].get<double>() * s;
+    }
+    if (g.contains("centre")) {
+      for (json& c : g["centre"]) c = c.get<double>() * s;
+    }
+    json& d = b["discretization"];
+    if (d.contains("element_size")) d["element_size"] = d["element_size"].get<double>() * s;
+  }
+  doc["time"]["end_time"] = doc["time"]["end_time"].get<double>() * s;
+  doc.erase("output");
+}
+
+TEST(AdhesionImpact, adhesive_cylinder_size_effect) {
+  json free = scene_file("adhesive_cylinder_axisym");
+  free["interactions"][0].erase("adhesion");
+  const RunSummary f = run_scene(free);
+  ASSERT_EQ(f.outcome, RunOutcome::finished) << f.reason;
+  const double v_free = f.bodies[0].centroid_velocity.z();
+  std::printf("no adhesion: rebound %.3f m/s\n", v_free);
+  ASSERT_GT(v_free, 10.0);
+
+  double v[3] = {};
+  long long active[3] = {}, exhausted[3] = {};
+  const double scales[3] = {1e-4, 1e-3, 1e-2};
+  for (int i = 0; i < 3; ++i) {
+    json doc = scene_file("adhesive_cylinder_axisym");
+    scale_lengths(doc, scales[i]);
+    const RunSummary s = run_scene(doc);
+    ASSERT_EQ(s.outcome, RunOutcome::finished) << s.reason;
+    ASSERT_EQ(s.interfaces.size(), 1u);
+    const InterfaceSummary& c = s.interfaces[0];
+    ASSERT_TRUE(c.adhesion);
+    v[i] = s.bodies[0].centroid_velocity.z();
+    active[i] = c.links_active;
+    exhausted[i] = c.links_exhausted;
+    std::printf(
+        "x%g: impactor %.3f m/s, links activated %lld, active %lld, exhausted %lld, "
+        "bonded area %.3e m^2 (max %.3e), adhesion %.3e J = %.3e of E0, balance %.2e\n",
+        scales[i] / scales[0], v[i], c.links_activated, c.links_active, c.links_exhausted,
+        c.bonded_area, c.max_bonded_area, c.adhesion_work, c.adhesion_work / s.energy.initial_total,
+        s.energy.balance_error);
+    // The budget charged never exceeds G_c times the bonded area.
+    EXPECT_LE(c.adhesion_work, 0.02 * c.max_bonded_area * (1 + 1e-9));
+    EXPECT_LT(std::abs(s.energy.balance_error), 0.03);
+  }
+  // Smallest: stuck, links still holding at the end.
+  EXPECT_GT(active[0], 0);
+  // Larger: every link spent, the impactor flies off upwards.
+  for (int i = 1; i < 3; ++i) {
+    EXPECT_EQ(active[i], 0) << "x" << scales[i] / scales[0];
+    EXPECT_GT(exhausted[i], 0);
+    EXPECT_GT(v[i], 0.0);
+    EXPECT_LT(v[i], v_free);
+  }
+  EXPECT_LT(v[1], v[2]);  // the larger, the less the adhesion holds it back
+}
+
+TEST(AdhesionImpact, elastic_rebound_falls_with_sigma_c) {
+  // The elastic sphere of thesis 3.5.2.1 at 1e-4 of its size (see the scale
+  // note above), viscous hourglass control, G_c = 0.02 J/m^2, bonded on
+  // first contact; sigma_c from 1e7 Pa to 1e10 Pa, then no cap.
+  json base = scene_file("elastic_sphere_bounce_axisym");
+  for (json& b : base["bodies"]) b.erase("hourglass");
+  scale_lengths(base, 1e-4);
+  base["time"]["end_time"] = 2 * base["time"]["end_time"].get<double>();
+  const RunSummary f = run_scene(base);
+  ASSERT_EQ(f.outcome, RunOutcome::finished) << f.reason;
+  const double v_free = f.bodies[0].centroid_velocity.z();
+  const double caps[5] = {1e7, 1e8, 1e9, 1e10, 0.0};
+  double v[5] = {};
+  for (int i = 0; i < 5; ++i) {
+    json doc = base;
+    doc["interactions"][0]["adhesion"] = {{"G_c", 0.02}};
+    if (caps[i] > 0.0) doc["interactions"][0]["adhesion"]["sigma_c"] = caps[i];
+    const RunSummary s = run_scene(doc);
+    ASSERT_EQ(s.outcome, RunOutcome::finished) << s.reason;
+    v[i] = s.bodies[0].centroid_velocity.z();
+    const InterfaceSummary& c = s.interfaces[0];
+    std::printf(
+        "sigma_c %s: rebound %.4f m/s (no adhesion %.4f), links exhausted %lld of %lld, "
+        "adhesion %.3e of E0, balance %.2e\n",
+        caps[i] > 0.0 ? std::to_string(caps[i]).c_str() : "none", v[i], v_free, c.links_exhausted,
+        c.links_activated, c.adhesion_work / s.energy.initial_total, s.energy.balance_error);
+    EXPECT_EQ(c.links_active, 0);  // it rebounded
+    EXPECT_LT(std::abs(s.energy.balance_error), 0.01);
+  }
+  // Falls with sigma_c (to 0.1 % of v for the rounding of the dynamics) ...
+  for (int i = 1; i < 5; ++i) EXPECT_LE(v[i], v[i - 1] * (1 + 1e-3)) << i;
+  // ... from near the adhesion-free value (a low cap lets the pair open
+  // early) to a plateau: above the largest tension the links ever need the
+  // cap does not bind and the uncapped (Griffith) rebound is recovered.
+  EXPECT_GT(v[0], 0.95 * v_free);
+  EXPECT_LT(v[4], 0.9 * v_free);
+  EXPECT_NEAR(v[3], v[4], 1e-3 * v[4]);
+}
+
+// Activation and erosion on an elasto-plastic impact (aluminium sphere on an
+// aluminium block at 300 m/s, Johnson-Cook with thermal softening, 30 ns):
+// links bond on the yield-drop rule only if some element reached the drop
+// (the largest drop is read from the elements' states), not at all with a
+// threshold above it; with rule none every touching node bonds. With damage
+// on and D_adh_max below the initial random damage (up to 1e-3), links erode.
+TEST(AdhesionImpact, activation_and_erosion_on_a_plastic_impact) {
+  json base = scene_file("elastic_sphere_bounce_axisym");
+  for (json& b : base["bodies"]) {
+    b["material"] = "al-thesis";
+    b["switches"] = {{"damage", false}};
+    b.erase("hourglass");
+  }
+  base["bodies"][0]["initial"]["velocity"] = {0, 0, -300.0};
+  base["time"]["end_time"] = 3e-8;
+  base.erase("output");
+  auto run = [&](const json& adhesion, bool damage, double* max_drop) {
+    json doc = base;
+    doc["interactions"][0]["adhesion"] = adhesion;
+    if (damage) {
+      for (json& b : doc["bodies"]) b["switches"]["damage"] = true;
+    }
+    const LoadedScene loaded = read_scene(doc);
+    SimulationOptions options;
+    options.threads = 1;
+    Simulation sim(loaded.scene, loaded.resolved, options);
+    const RunSummary s = sim.run();
+    EXPECT_EQ(s.outcome, RunOutcome::finished) << s.reason;
+    if (max_drop) {
+      *max_drop = 0.0;
+      for (const FeBody& b : sim.bodies()) {
+        for (const PointState& st : b.state) {
+          *max_drop = std::max(*max_drop, 1.0 - st.sigma_y_static / st.sigma_y_static_peak);
+        }
+      }
+    }
+    return s.interfaces.at(0);
+  };
+  double drop = 0.0;
+  const InterfaceSummary none = run({{"G_c", 0.02}}, false, &drop);
+  std::printf("rule none: %lld nodes touched, %lld links activated; largest yield drop %.3f\n",
+              none.nodes_ever_in_contact, none.links_activated, drop);
+  EXPECT_GT(none.links_activated, 0);
+  EXPECT_LE(none.links_activated, none.nodes_ever_in_contact);
+  ASSERT_GT(drop, 0.15);
+  ASSERT_LT(drop, 0.9);
+  const InterfaceSummary low =
+      run({{"G_c", 0.02}, {"activation", {{"rule", "yield-drop"}, {"drop_percent", 10}}}}, false,
+          nullptr);
+  const InterfaceSummary high =
+      run({{"G_c", 0.02}, {"activation", {{"rule", "yield-drop"}, {"drop_percent", 90}}}}, false,
+          nullptr);
+  std::printf("yield drop 10 %%: %lld links activated; 90 %%: %lld\n", low.links_activated,
+              high.links_activated);
+  EXPECT_GT(low.links_activated, 0);
+  EXPECT_LE(low.links_activated, none.links_activated);
+  EXPECT_EQ(high.links_activated, 0);
+  const InterfaceSummary eroded = run({{"G_c", 0.02}, {"D_adh_max", 5e-4}}, true, nullptr);
+  std::printf("D_adh_max 5e-4 with damage: %lld eroded, %lld activated, %lld active\n",
+              eroded.links_eroded, eroded.links_activated, eroded.links_active);
+  EXPECT_GT(eroded.links_eroded, 0);
+}
+
+}  // namespace
+}  // namespace splat
