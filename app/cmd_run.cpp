@@ -1,8 +1,8 @@
 // splat run SCENE.json [--set /json/pointer=VALUE ...] [--out DIR] [--json]
 // Runs one scene. Writes DIR/<scene>.h5 (+ .xmf) and DIR/<scene>.summary.json
 // and prints the summary (schemas/result.schema.json with --json).
-// Exit code: 0 finished, 3 ended otherwise (unstable, timed-out, error; the
-// summary says why), 2 bad input.
+// Exit code: 0 finished (two-mass scenes: stick or rebound), 3 ended otherwise (unstable,
+// timed-out, error; the summary says why), 2 bad input.
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/input/scene_io.hpp"
+#include "solver/two_mass/two_mass_model.hpp"
 
 namespace splat::app {
 
@@ -26,8 +27,28 @@ struct RunOptions {
   int threads = 0;
 };
 
+void print_two_mass(const RunSummary& s) {
+  const TwoMassSummary& t = *s.two_mass;
+  std::printf("  steps %lld (dt %.4e s), end time %.4e s, wall %.3f s\n", s.steps, t.dt, s.end_time,
+              s.wall_seconds);
+  if (t.separation_velocity) {
+    std::printf("  link let go at t = %.6e s; separation velocity %.6g m/s (away from m)\n",
+                *t.release_time, *t.separation_velocity);
+  }
+  std::printf("  link %s, work %.6e of %.6e J, largest tension %.4e N\n", t.link_state.c_str(),
+              t.link_work, t.work_budget, t.max_link_force);
+  std::printf("  final velocities: M %.6g m/s, m %.6g m/s; gap %.4e m\n", t.final_velocity_M,
+              t.final_velocity_m, t.final_gap);
+  std::printf("  energy balance error %.3e of the initial energy\n", s.energy.balance_error);
+  if (!s.hdf5_path.empty()) std::printf("  result %s\n", s.hdf5_path.c_str());
+}
+
 void print_human(const RunSummary& s) {
   std::printf("scene %s: %s (%s)\n", s.scene.c_str(), to_string(s.outcome), s.reason.c_str());
+  if (s.two_mass) {
+    print_two_mass(s);
+    return;
+  }
   std::printf("  steps %lld, end time %.4e s, wall %.2f s, %d thread(s)\n", s.steps, s.end_time,
               s.wall_seconds, s.threads);
   const EnergyBudget& e = s.energy;
@@ -56,7 +77,9 @@ int run_scene(const RunOptions& o) {
   so.threads = o.threads;
   so.quiet = !o.progress;
   RunSummary summary;
-  {
+  if (loaded.scene.two_mass) {
+    summary = run_two_mass(loaded.scene, loaded.resolved, so);
+  } else {
     Simulation sim(loaded.scene, loaded.resolved, so);
     summary = sim.run();
   }
@@ -70,7 +93,10 @@ int run_scene(const RunOptions& o) {
   } else {
     print_human(summary);
   }
-  return summary.outcome == RunOutcome::finished ? 0 : 3;
+  const bool ran_to_a_verdict = summary.outcome == RunOutcome::finished ||
+                                summary.outcome == RunOutcome::stick ||
+                                summary.outcome == RunOutcome::rebound;
+  return ran_to_a_verdict ? 0 : 3;
 }
 
 }  // namespace

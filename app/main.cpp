@@ -3,6 +3,7 @@
 // registers itself through app/commands.hpp.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 
@@ -10,6 +11,10 @@
 #include "solver/build_info.hpp"
 
 int main(int argc, char** argv) {
+  // Threads that finish their share of a step sleep instead of spinning:
+  // campaigns run several jobs per machine, where spinning threads of one job
+  // steal the cores of the others. A user's own setting wins.
+  setenv("OMP_WAIT_POLICY", "passive", 0);
   CLI::App app{"splat: cold-spray particle impact simulator"};
   app.require_subcommand(0, 1);
   bool show_version = false;

@@ -24,6 +24,13 @@ mutations=(
   "solver/material/damage.hpp|(k_s * p + q) / tau_max|(k_s * p + q) / (1.05 * tau_max)|shear_failure_damage.*"
   "solver/material/elasticity.hpp|(Mat3::Identity() - half).inverse() * (Mat3::Identity() + half)|(Mat3::Identity() + half).inverse() * (Mat3::Identity() - half)|objective_rate.*"
   "solver/material/elasticity.hpp|const Mat3 half = 0.5 * dt * W;|const Mat3 half = 0.45 * dt * W;|objective_rate.*:simple_shear.*"
+  "solver/fe/fe_body.cpp|nodes.mass[body.conn[e][a]] += body.element_mass[e] / npe;|nodes.mass[body.conn[e][a]] += 1.05 * body.element_mass[e] / npe;|elastic_bar_wave_speed.*"
+  "solver/material/point_update.cpp|      0.5 * J_mid * ((sigma_old.array()|      0.45 * J_mid * ((sigma_old.array()|freely_vibrating_elastic_body.*"
+  "solver/adhesion/cohesive_law.cpp|double dW = I * (g_free - 0.5 * h * I);|double dW = I * (g_free - h * I);|two_mass_adhesion.free_mass*"
+  "solver/adhesion/cohesive_law.cpp|2.0 * W_rem / (g_free + std::sqrt(disc))|W_rem / g_free + 0.0 * disc|two_mass_adhesion.free_mass*"
+  "solver/adhesion/cohesive_law.cpp|const double I_cap = max_tension(p, area) * dt;|const double I_cap = 1.05 * max_tension(p, area) * dt;|two_mass_adhesion.spring*"
+  "solver/two_mass/two_mass_model.cpp|constexpr double k_restitution = 1.0;|constexpr double k_restitution = 0.95;|two_mass_adhesion.free_mass*"
+  "solver/two_mass/two_mass_model.cpp|double v_new = v - dt * s.k * x / s.m;|double v_new = v - dt * 1.02 * s.k * x / s.m;|two_mass_adhesion.spring*"
 )
 
 status=0

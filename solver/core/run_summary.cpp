@@ -18,6 +18,10 @@ const char* to_string(RunOutcome outcome) {
       return "cancelled";
     case RunOutcome::error:
       return "error";
+    case RunOutcome::stick:
+      return "stick";
+    case RunOutcome::rebound:
+      return "rebound";
   }
   return "error";
 }
@@ -30,6 +34,10 @@ nlohmann::json vec(const Vec3& v) {
 
 nlohmann::json path_or_null(const std::string& p) {
   return p.empty() ? nlohmann::json(nullptr) : nlohmann::json(p);
+}
+
+nlohmann::json number_or_null(const std::optional<double>& x) {
+  return x ? nlohmann::json(*x) : nlohmann::json(nullptr);
 }
 
 }  // namespace
@@ -53,6 +61,7 @@ nlohmann::json to_json(const RunSummary& s) {
       {"hourglass", e.hourglass},         {"artificial_viscosity", e.artificial_viscosity},
       {"absorbed", e.absorbed},           {"eroded", e.eroded},
       {"wall_work", e.wall_work},         {"external_work", e.external_work},
+      {"contact_work", e.contact_work},   {"contact_stored", e.contact_stored},
       {"balance_error", e.balance_error}};
   j["bodies"] = nlohmann::json::array();
   for (const BodySummary& b : s.bodies) {
@@ -67,6 +76,37 @@ nlohmann::json to_json(const RunSummary& s) {
                            {"max_temperature", b.max_temperature},
                            {"extent_min", vec(b.extent_min)},
                            {"extent_max", vec(b.extent_max)}});
+  }
+  j["interfaces"] = nlohmann::json::array();
+  for (const InterfaceSummary& c : s.interfaces) {
+    j["interfaces"].push_back({{"master", c.master},
+                               {"slave", c.slave},
+                               {"method", c.method},
+                               {"friction", c.friction},
+                               {"work", c.work},
+                               {"stored", c.stored},
+                               {"dissipated", c.dissipated},
+                               {"pairs_in_contact", c.pairs_in_contact},
+                               {"max_pairs_in_contact", c.max_pairs_in_contact},
+                               {"nodes_ever_in_contact", c.nodes_ever_in_contact},
+                               {"max_solver_iterations", c.max_solver_iterations},
+                               {"max_solver_residual", c.max_solver_residual},
+                               {"unconverged_solves", c.unconverged_solves},
+                               {"max_penetration", c.max_penetration}});
+  }
+  if (s.two_mass) {
+    const TwoMassSummary& t = *s.two_mass;
+    j["separation_velocity"] = number_or_null(t.separation_velocity);
+    j["two_mass"] = {{"separation_velocity", number_or_null(t.separation_velocity)},
+                     {"release_time", number_or_null(t.release_time)},
+                     {"final_velocity_M", t.final_velocity_M},
+                     {"final_velocity_m", t.final_velocity_m},
+                     {"final_gap", t.final_gap},
+                     {"link_state", t.link_state},
+                     {"link_work", t.link_work},
+                     {"work_budget", t.work_budget},
+                     {"max_link_force", t.max_link_force},
+                     {"dt", t.dt}};
   }
   j["output"] = {{"hdf5", path_or_null(s.hdf5_path)}, {"xdmf", path_or_null(s.xdmf_path)}};
   return j;

@@ -1,5 +1,7 @@
 #include "solver/input/scene_io.hpp"
 
+#include "solver/input/impact_scene.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -8,6 +10,8 @@
 #include <string_view>
 #include <utility>
 
+#include "solver/input/adhesion_io.hpp"
+#include "solver/input/impact_scene.hpp"
 #include "solver/input/material_io.hpp"
 #include "solver/input/schema.hpp"
 #include "solver/mesh/mesh.hpp"
@@ -83,8 +87,17 @@ constexpr std::array<std::pair<BoundaryType, std::string_view>, 4> boundary_type
     {BoundaryType::velocity, "velocity"},
     {BoundaryType::absorbing, "absorbing"},
 }};
-constexpr std::array<std::pair<InteractionType, std::string_view>, 1> interaction_names{{
+constexpr std::array<std::pair<InteractionType, std::string_view>, 2> interaction_names{{
     {InteractionType::rigid_wall, "rigid-wall"},
+    {InteractionType::contact, "contact"},
+}};
+constexpr std::array<std::pair<ContactMethod, std::string_view>, 2> contact_method_names{{
+    {ContactMethod::lagrange, "lagrange"},
+    {ContactMethod::penalty, "penalty"},
+}};
+constexpr std::array<std::pair<ContactSolverKind, std::string_view>, 2> contact_solver_names{{
+    {ContactSolverKind::pgs, "pgs"},
+    {ContactSolverKind::active_set, "active-set"},
 }};
 
 template <class E, std::size_t N>
@@ -369,6 +382,13 @@ BodySpec parse_body(const json& j, const std::string& p, const std::filesystem::
       }
     }
   }
+  if (const auto w = initial.find("angular_velocity"); w != initial.end()) {
+    b.angular_velocity = vec3(*w);
+    if (is_axisymmetric(b.discretization) && b.angular_velocity != Vec3::Zero()) {
+      problems.add(p + "/initial/angular_velocity",
+                   "must be [0, 0, 0] for fe-axisym bodies, which cannot spin (rad/s)");
+    }
+  }
   b.temperature = value_or(initial, "temperature", b.material.strength.T_ref);
   b.seed = value_or(initial, "seed", 1ULL);
 
@@ -409,7 +429,10 @@ json body_to_json(const BodySpec& b) {
       {"geometry", geometry_to_json(b.geometry)},
       {"discretization", std::move(d)},
       {"initial",
-       {{"velocity", to_json_vec(b.velocity)}, {"temperature", b.temperature}, {"seed", b.seed}}},
+       {{"velocity", to_json_vec(b.velocity)},
+        {"angular_velocity", to_json_vec(b.angular_velocity)},
+        {"temperature", b.temperature},
+        {"seed", b.seed}}},
       {"switches",
        {{"damage", b.switches.damage},
         {"thermal_softening", b.switches.thermal_softening},
@@ -491,6 +514,32 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
                                   bool axisym, Problems& problems) {
   InteractionSpec in;
   in.type = from_name(interaction_names, j.at("type").get<std::string>());
+  if (in.type == InteractionType::contact) {
+    in.master = j.at("master").get<std::string>();
+    in.slave = j.at("slave").get<std::string>();
+    for (const char* side : {"master", "slave"}) {
+      const std::string& name = side[0] == 'm' ? in.master : in.slave;
+      if (find_body(scene, name) == nullptr) {
+        problems.add(at(p, side), "no body named \"" + name + "\"");
+      }
+    }
+    if (in.master == in.slave) {
+      problems.add(at(p, "slave"), "must differ from master (self-contact is not available)");
+    }
+    in.method = from_name(contact_method_names, value_or(j, "method", std::string("lagrange")));
+    in.penalty_stiffness = value_or(j, "penalty_stiffness", 0.0);
+    in.friction = value_or(j, "friction", 0.0);
+    in.solver = from_name(contact_solver_names, value_or(j, "solver", std::string("pgs")));
+    in.two_pass = value_or(j, "two_pass", false);
+    if (in.friction > 0.0 && in.method == ContactMethod::lagrange &&
+        in.solver == ContactSolverKind::active_set) {
+      problems.add(at(p, "solver"), "active-set is frictionless: use pgs with friction > 0");
+    }
+    if (in.method != ContactMethod::penalty && j.contains("penalty_stiffness")) {
+      problems.add(at(p, "penalty_stiffness"), "only with method \"penalty\"");
+    }
+    return in;
+  }
   if (const auto bodies = j.find("bodies"); bodies != j.end()) {
     for (std::size_t i = 0; i < bodies->size(); ++i) {
       in.bodies.push_back(bodies->at(i).get<std::string>());
@@ -514,6 +563,17 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
 }
 
 json interaction_to_json(const InteractionSpec& in) {
+  if (in.type == InteractionType::contact) {
+    json j{{"type", name_of(interaction_names, in.type)},
+           {"master", in.master},
+           {"slave", in.slave},
+           {"method", name_of(contact_method_names, in.method)},
+           {"friction", in.friction},
+           {"solver", name_of(contact_solver_names, in.solver)},
+           {"two_pass", in.two_pass}};
+    if (in.method == ContactMethod::penalty) j["penalty_stiffness"] = in.penalty_stiffness;
+    return j;
+  }
   json j{{"type", name_of(interaction_names, in.type)},
          {"point", to_json_vec(in.point)},
          {"normal", to_json_vec(in.normal)}};
@@ -526,6 +586,7 @@ json interaction_to_json(const InteractionSpec& in) {
 TimeSpec parse_time(const json& t) {
   TimeSpec ts;
   ts.end_time = t.at("end_time").get<double>();
+  ts.dt = value_or(t, "dt", 0.0);
   ts.stability_coefficient = value_or(t, "stability_coefficient", ts.stability_coefficient);
   ts.max_steps = value_or(t, "max_steps", ts.max_steps);
   ts.min_time_step = value_or(t, "min_time_step", ts.min_time_step);
@@ -534,13 +595,46 @@ TimeSpec parse_time(const json& t) {
   return ts;
 }
 
-json time_to_json(const TimeSpec& ts) {
-  return {{"end_time", ts.end_time},
-          {"stability_coefficient", ts.stability_coefficient},
-          {"max_steps", ts.max_steps},
-          {"min_time_step", ts.min_time_step},
-          {"wall_clock_limit", ts.wall_clock_limit},
-          {"energy_balance_limit", ts.energy_balance_limit}};
+json time_to_json(const TimeSpec& ts, bool two_mass) {
+  json j{{"end_time", ts.end_time},
+         {"stability_coefficient", ts.stability_coefficient},
+         {"max_steps", ts.max_steps},
+         {"min_time_step", ts.min_time_step},
+         {"wall_clock_limit", ts.wall_clock_limit},
+         {"energy_balance_limit", ts.energy_balance_limit}};
+  if (two_mass) j["dt"] = ts.dt;
+  return j;
+}
+
+// ---------------------------------------------------------------- two-mass scenes
+
+TwoMassSpec parse_two_mass(const json& j, const TimeSpec& time, Problems& problems) {
+  TwoMassSpec t;
+  t.M = j.at("M").get<double>();
+  t.m = j.at("m").get<double>();
+  t.k = j.at("k").get<double>();
+  t.V0 = j.at("V0").get<double>();
+  t.area = j.at("area").get<double>();
+  t.adhesion = adhesion_from_json(j.at("adhesion"));
+  if (t.adhesion.activation != ActivationRule::none) {
+    problems.add("/two_mass/adhesion/activation/rule",
+                 "must be \"none\": rigid masses have no yield stress to drop");
+  }
+  // Central differences on the spring are stable for dt < 2 / omega.
+  if (t.k > 0.0 && time.dt > 0.0) {
+    const double dt_max = 2.0 * std::sqrt(t.m / t.k);
+    if (!(time.dt < dt_max)) {
+      problems.add("/time/dt", "must be < 2 sqrt(m / k) = " + std::to_string(dt_max) +
+                                   " for a stable spring (s)");
+    }
+  }
+  if (time.dt > time.end_time) problems.add("/time/dt", "must be <= end_time (s)");
+  return t;
+}
+
+json two_mass_to_json(const TwoMassSpec& t) {
+  return {{"M", t.M},   {"m", t.m},       {"k", t.k},
+          {"V0", t.V0}, {"area", t.area}, {"adhesion", adhesion_to_json(t.adhesion)}};
 }
 
 OutputSpec parse_output(const json& o, double end_time, Problems& problems) {
@@ -578,6 +672,12 @@ json output_to_json(const OutputSpec& out) {
 
 json scene_to_resolved_json(const Scene& scene) {
   json j{{"name", scene.name}, {"description", scene.description}};
+  if (scene.two_mass) {
+    j["two_mass"] = two_mass_to_json(*scene.two_mass);
+    j["time"] = time_to_json(scene.time, true);
+    j["output"] = output_to_json(scene.output);
+    return j;
+  }
   j["bodies"] = json::array();
   for (const BodySpec& b : scene.bodies) j["bodies"].push_back(body_to_json(b));
   j["boundary_conditions"] = json::array();
@@ -588,7 +688,7 @@ json scene_to_resolved_json(const Scene& scene) {
   for (const InteractionSpec& in : scene.interactions) {
     j["interactions"].push_back(interaction_to_json(in));
   }
-  j["time"] = time_to_json(scene.time);
+  j["time"] = time_to_json(scene.time, false);
   j["output"] = output_to_json(scene.output);
   return j;
 }
@@ -675,11 +775,46 @@ void apply_override(json& doc, const std::string& text) {
 
 LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
   validate_or_throw("scene", doc);
+  if (doc.contains("particle_impact") && !doc.contains("bodies") && !doc.contains("two_mass")) {
+    const ExpandedImpact expanded = expand_particle_impact(doc);
+    LoadedScene loaded = read_scene(expanded.scene, base_dir);
+    const json& block = expanded.scene.at("particle_impact");
+    ImpactSpec impact;
+    impact.substrate = expanded.choice.rigid_substrate ? "" : "substrate";
+    impact.velocity = block.at("velocity").get<double>();
+    impact.angle = block.value("angle", 0.0);
+    impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
+    impact.model = expanded.choice.model;
+    impact.why = expanded.choice.why;
+    loaded.scene.impact = impact;
+    loaded.resolved["particle_impact"] = block;
+    return loaded;
+  }
   Problems problems;
   LoadedScene loaded;
   Scene& scene = loaded.scene;
   scene.name = doc.at("name").get<std::string>();
   scene.description = value_or(doc, "description", std::string());
+
+  if (const auto tm = doc.find("two_mass"); tm != doc.end()) {
+    for (const char* key : {"bodies", "boundary_conditions", "interactions"}) {
+      if (doc.contains(key)) {
+        problems.add(at("", key), "a two_mass scene has no " + std::string(key) +
+                                      "; give either two_mass or bodies");
+      }
+    }
+    scene.time = parse_time(doc.at("time"));
+    scene.two_mass = parse_two_mass(*tm, scene.time, problems);
+    scene.output = parse_output(member_or_empty(doc, "output"), scene.time.end_time, problems);
+    if (!scene.output.snapshot_times.empty()) {
+      problems.add("/output",
+                   "a two_mass scene has no field snapshots (its histories are in the "
+                   "result file); remove snapshot_times / snapshot_count");
+    }
+    if (!problems.list.empty()) throw InputError(std::move(problems.list));
+    loaded.resolved = scene_to_resolved_json(scene);
+    return loaded;
+  }
 
   const json& bodies = doc.at("bodies");
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -715,6 +850,10 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
         parse_interaction(interactions[i], at("/interactions", i), scene, axisym, problems));
   }
   scene.time = parse_time(doc.at("time"));
+  if (scene.time.dt != 0.0) {
+    problems.add("/time/dt",
+                 "only two_mass scenes take a fixed time step; FE scenes use the stability bound");
+  }
   scene.output = parse_output(member_or_empty(doc, "output"), scene.time.end_time, problems);
 
   if (!problems.list.empty()) throw InputError(std::move(problems.list));

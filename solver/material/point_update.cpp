@@ -35,6 +35,7 @@ PointState initial_point_state(const Material& m, const ModelSwitches& sw, doubl
   st.sigma_y_static = (1.0 - st.D) * johnson_cook_flow_stress(m.strength, sw, 0.0, 0.0, T0).value;
   st.sigma_y = st.sigma_y_static;
   st.sigma_y_peak = st.sigma_y;
+  st.sigma_y_static_peak = st.sigma_y_static;
   return st;
 }
 
@@ -166,6 +167,7 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
     st.sigma_y = st.sigma_y_static;  // no plastic rate: no rate hardening
   }
   st.sigma_y_peak = std::max(st.sigma_y_peak, st.sigma_y);
+  st.sigma_y_static_peak = std::max(st.sigma_y_static_peak, st.sigma_y_static);
   return result;
 }
 

@@ -46,8 +46,12 @@ struct PointState {
                                 // update_point (eps_p, T, D change only there) so that a
                                 // plastic step starts without evaluating pow
   double strength_scale = 1.0;  // (1 - D)(1 - T*^m), -; sigma_y_static = scale * hardening
-  double sigma_y_peak = 0.0;    // largest sigma_y seen, Pa
+  double sigma_y_peak = 0.0;    // largest sigma_y seen (rate-dependent), Pa
   double plastic_work = 0.0;    // plastic work per unit reference volume, J/m^3
+
+  // Largest sigma_y_static seen, Pa: the rate-free reference of the adhesion
+  // activation test (solver/adhesion/cohesive_law.hpp).
+  double sigma_y_static_peak = 0.0;
 
   Mat3 cauchy() const { return s - p * Mat3::Identity(); }
 };

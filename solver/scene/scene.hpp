@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "solver/adhesion/cohesive_law.hpp"
 #include "solver/common/types.hpp"
+#include "solver/contact/contact_types.hpp"
 #include "solver/material/material.hpp"
 
 namespace splat {
@@ -53,9 +55,10 @@ struct BodySpec {
   double element_size = 0.0;  // m
   SectorKind sector = SectorKind::full;
   GradingSpec grading;
-  Vec3 velocity = Vec3::Zero();  // initial velocity, m/s
-  double temperature = 300.0;    // initial temperature, K
-  unsigned long long seed = 1;   // seed of the random initial damage
+  Vec3 velocity = Vec3::Zero();          // initial velocity, m/s
+  Vec3 angular_velocity = Vec3::Zero();  // initial spin about the centre of mass, rad/s (3D)
+  double temperature = 300.0;            // initial temperature, K
+  unsigned long long seed = 1;           // seed of the random initial damage
   ModelSwitches switches;
   HourglassType hourglass = HourglassType::viscous;
   double hourglass_coefficient = 0.1;  // -
@@ -77,17 +80,26 @@ struct BoundarySpec {
   Vec3 velocity = Vec3::Zero();  // m/s, for type velocity
 };
 
-enum class InteractionType { rigid_wall };
+enum class InteractionType { rigid_wall, contact };
 
 struct InteractionSpec {
   InteractionType type = InteractionType::rigid_wall;
+  // rigid-wall
   std::vector<std::string> bodies;  // empty = all bodies
   Vec3 point = Vec3::Zero();        // a point of the wall plane, m
   Vec3 normal = Vec3(0, 0, 1);      // unit normal pointing into the allowed side, -
+  // contact: slave nodes of `slave` against the boundary faces of `master`
+  std::string master, slave;
+  ContactMethod method = ContactMethod::lagrange;
+  double penalty_stiffness = 0.0;  // Pa/m; 0 = 0.1 K_min / h_min (see model_builder)
+  double friction = 0.0;           // Coulomb coefficient, -
+  ContactSolverKind solver = ContactSolverKind::pgs;
+  bool two_pass = false;  // also master nodes on slave faces
 };
 
 struct TimeSpec {
   double end_time = 0.0;               // s
+  double dt = 0.0;                     // s; fixed time step of two-mass scenes; 0 = default
   double stability_coefficient = 0.9;  // fraction of the CFL bound, -
   long long max_steps = 10'000'000;    // -
   double min_time_step = 0.0;          // s; below it the run ends `unstable`; 0 = 1e-6 of the first
@@ -100,9 +112,37 @@ struct OutputSpec {
   double history_interval = 0.0;       // s; 0 = every step
 };
 
+// The two-mass adhesion problem (thesis 3.5.1.1): a rigid mass M moving at V0
+// along +x touches, at t = 0, a rigid mass m that rests on a spring of
+// stiffness k (rest position x = 0); the collision is elastic and the pair
+// is then joined by the cohesive law over `area`. Sketch:
+//     M --V0-->  (touching at t = 0)  m --/\/\/\-- wall   (spring k)
+struct TwoMassSpec {
+  double M = 0.0;     // mass of the moving body, kg
+  double m = 0.0;     // mass of the body on the spring, kg
+  double k = 0.0;     // spring stiffness, N/m (0: free mass)
+  double V0 = 0.0;    // speed of M towards m at first touch, m/s
+  double area = 0.0;  // adhesive area of the link, m^2
+  AdhesionParams adhesion;
+};
+
+// What a particle_impact block asked for and the model it expanded into
+// (solver/input/impact_scene.hpp); the verdict of an impact run reads it.
+struct ImpactSpec {
+  std::string particle = "particle";  // body name
+  std::string substrate;              // body name; empty = rigid wall
+  double velocity = 0.0;              // impact speed, m/s
+  double angle = 0.0;                 // from the substrate normal, deg
+  bool adaptive_end = true;           // stop once the outcome is decided
+  std::string model;                  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full
+  std::string why;                    // why that model, for people
+};
+
 struct Scene {
   std::string name;
   std::string description;
+  std::optional<TwoMassSpec> two_mass;  // set: a two-mass scene, no bodies
+  std::optional<ImpactSpec> impact;     // set: expanded from a particle_impact block
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundaries;
   std::vector<InteractionSpec> interactions;

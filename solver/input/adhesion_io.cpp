@@ -1,0 +1,36 @@
+#include "solver/input/adhesion_io.hpp"
+
+#include <string>
+
+namespace splat {
+
+using nlohmann::json;
+
+AdhesionParams adhesion_from_json(const json& j) {
+  AdhesionParams p;
+  p.G_c = j.at("G_c").get<double>();
+  if (const auto s = j.find("sigma_c"); s != j.end() && !s->is_null()) p.sigma_c = s->get<double>();
+  if (const auto d = j.find("D_adh_max"); d != j.end() && !d->is_null()) {
+    p.D_adh_max = d->get<double>();
+  }
+  if (const auto a = j.find("activation"); a != j.end()) {
+    const std::string rule = a->value("rule", std::string("none"));
+    p.activation = rule == "yield-drop" ? ActivationRule::yield_drop : ActivationRule::none;
+    p.yield_drop = a->value("drop_percent", 0.0) / 100.0;
+    p.sides = a->value("sides", std::string("either")) == "both" ? ActivationSides::both
+                                                                 : ActivationSides::either;
+  }
+  return p;
+}
+
+json adhesion_to_json(const AdhesionParams& p) {
+  json activation{{"rule", p.activation == ActivationRule::yield_drop ? "yield-drop" : "none"},
+                  {"drop_percent", p.yield_drop * 100.0},
+                  {"sides", p.sides == ActivationSides::both ? "both" : "either"}};
+  return {{"G_c", p.G_c},
+          {"sigma_c", p.sigma_c ? json(*p.sigma_c) : json(nullptr)},
+          {"activation", std::move(activation)},
+          {"D_adh_max", p.D_adh_max ? json(*p.D_adh_max) : json(nullptr)}};
+}
+
+}  // namespace splat

@@ -1,0 +1,433 @@
+#include "solver/sph/sph_body.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "solver/material/damage.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#define SPLAT_OMP(directive) _Pragma(#directive)
+#else
+#define SPLAT_OMP(directive)
+#endif
+
+namespace splat {
+
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+// Particles per reduction block: partial sums over fixed blocks combined in
+// block order do not depend on the thread count.
+constexpr std::size_t block_size = 64;
+constexpr long long min_parallel_particles = 256;
+
+struct BlockSums {
+  double dt_min = infinity;
+  double hourglass_power = 0.0;
+  double viscosity_power = 0.0;
+  double max_deformation = 0.0;
+  int max_iterations = 0;
+  bool failed = false;
+  long long inverted = 0;
+};
+
+std::size_t num_blocks(std::size_t n) {
+  return (n + block_size - 1) / block_size;
+}
+
+// Runs body(i, sums) for every particle, in fixed blocks, in parallel.
+template <class Body>
+void for_blocks(std::size_t n, std::vector<BlockSums>& blocks, Body&& body) {
+  const long long nb = static_cast<long long>(num_blocks(n));
+  blocks.assign(static_cast<std::size_t>(nb), BlockSums{});
+  SPLAT_OMP(omp parallel for schedule(static) if (static_cast<long long>(n) >= min_parallel_particles))
+  for (long long bk = 0; bk < nb; ++bk) {
+    const std::size_t k = static_cast<std::size_t>(bk);
+    const std::size_t end = std::min(n, (k + 1) * block_size);
+    for (std::size_t i = k * block_size; i < end; ++i) body(i, blocks[k]);
+  }
+}
+
+void check_settings(const SphSettings& s) {
+  const auto bad = [](const char* what) {
+    throw std::invalid_argument(std::string("SPH settings: ") + what);
+  };
+  if (!(s.h_over_spacing > 0.0)) bad("h_over_spacing must be > 0");
+  if (s.visc_linear < 0.0 || s.visc_quadratic < 0.0) bad("viscosity coefficients must be >= 0");
+  if (s.hourglass_coefficient < 0.0) bad("hourglass_coefficient must be >= 0");
+  if (s.update_threshold < 0.0) bad("update_threshold must be >= 0");
+  if (s.min_correction_eigenvalue < 0.0 || s.min_correction_eigenvalue >= 1.0) {
+    bad("min_correction_eigenvalue must be in [0, 1)");
+  }
+  if (!(s.max_h_growth >= 1.0)) bad("max_h_growth must be >= 1");
+}
+
+// F and Fdot of particle i from the current positions and velocities.
+inline void deformation(const SphBody& b, const NodeSet& nodes, std::size_t i, Mat3& F,
+                        Mat3& Fdot) {
+  const std::size_t base = b.node_begin;
+  const Vec3 xi = nodes.x[base + i];
+  const Vec3 vi = nodes.v[base + i];
+  F = b.null_projector[i];
+  Fdot.setZero();
+  const int end = b.pairs.offsets[i + 1];
+  for (int k = b.pairs.offsets[i]; k < end; ++k) {
+    const std::size_t kk = static_cast<std::size_t>(k);
+    const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
+    const std::uint8_t op = b.pairs.op[kk];
+    const Vec3& g = b.pair_grad[kk];
+    Vec3 xj = nodes.x[base + j], vj = nodes.v[base + j];
+    if (op != 0) {
+      xj = mirror_point(b.planes, op, xj);
+      vj = mirror_vector(b.planes, op, vj);
+    }
+    F.noalias() += (xj - xi) * g.transpose();
+    Fdot.noalias() += (vj - vi) * g.transpose();
+  }
+}
+
+}  // namespace
+
+void sph_build_reference(SphBody& b) {
+  const std::size_t n = b.size();
+  b.pairs = find_neighbours(b.X, b.h, b.planes, b.active);
+  const std::size_t np = b.pairs.num_pairs();
+  std::vector<int> reverse(np, -1);  // index of the reverse pair (j, i, op)
+  b.pair_grad.assign(np, Vec3::Zero());
+  b.pair_dX.assign(np, Vec3::Zero());
+  b.pair_w.assign(np, 0.0f);
+  b.pair_dw.assign(np, 0.0f);
+  b.null_projector.assign(n, Mat3::Zero());
+
+  const long long count = static_cast<long long>(n);
+  SPLAT_OMP(omp parallel for schedule(static) if (count >= min_parallel_particles))
+  for (long long ii = 0; ii < count; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const int begin = b.pairs.offsets[i], end = b.pairs.offsets[i + 1];
+    Mat3 C = Mat3::Zero();
+    for (int k = begin; k < end; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
+      const std::uint8_t op = b.pairs.op[kk];
+      const Vec3 dX = mirror_point(b.planes, op, b.X[j]) - b.X[i];
+      const double r0 = dX.norm();
+      const KernelValue kv = kernel(b.settings.kernel, r0, 0.5 * (b.h[i] + b.h[j]));
+      b.pair_dX[kk] = dX;
+      b.pair_w[kk] = static_cast<float>(b.volume_ref[j] * kv.w);
+      b.pair_dw[kk] = static_cast<float>(kv.dw_dr);
+      b.pair_grad[kk] = (-kv.dw_dr / r0) * dX;  // uncorrected for now
+      C.noalias() += b.volume_ref[j] * dX * b.pair_grad[kk].transpose();
+      // Reverse pair (j, i, op) in j's list, sorted by (op, j).
+      const int* first = b.pairs.j.data() + b.pairs.offsets[j];
+      const int* last = b.pairs.j.data() + b.pairs.offsets[j + 1];
+      const std::uint8_t* op_first = b.pairs.op.data() + b.pairs.offsets[j];
+      for (const int* p = first; p != last; ++p) {
+        const std::size_t at = static_cast<std::size_t>(p - first);
+        if (op_first[at] == op && *p == static_cast<int>(i)) {
+          reverse[kk] = b.pairs.offsets[j] + static_cast<int>(at);
+          break;
+        }
+      }
+    }
+    // C is symmetric positive semi-definite and close to I for a full
+    // neighbourhood (about 1/2 across a flat free surface, less at edges and
+    // corners). Along an eigenvector u with eigenvalue lambda >= lambda_min, B
+    // inverts C; a weaker direction (a particle that kept few neighbours, or
+    // neighbours only in a plane or a line) is inverted with lambda_min and
+    // blended towards a rigid map through null_projector with weight
+    // 1 - lambda / lambda_min, so the corrected gradients stay bounded by
+    // |g| / lambda_min there (exactness is kept wherever lambda >= lambda_min).
+    const double lambda_min = b.settings.min_correction_eigenvalue;
+    Eigen::SelfAdjointEigenSolver<Mat3> eig;
+    eig.compute(C);
+    Mat3 B = Mat3::Zero();
+    if (eig.eigenvalues().minCoeff() >= lambda_min && eig.eigenvalues().minCoeff() > 0.0) {
+      B = C.inverse();  // the usual case; the inverse is exact to round-off
+    } else {
+      Mat3 null = Mat3::Zero();
+      for (int a = 0; a < 3; ++a) {
+        const double lambda = std::max(eig.eigenvalues()[a], 0.0);
+        const Vec3 u = eig.eigenvectors().col(a);
+        if (lambda >= lambda_min && lambda > 0.0) {
+          B += (1.0 / lambda) * u * u.transpose();
+        } else {
+          if (lambda_min > 0.0) B += (1.0 / lambda_min) * u * u.transpose();
+          null += (lambda_min > 0.0 ? 1.0 - lambda / lambda_min : 1.0) * u * u.transpose();
+        }
+      }
+      b.null_projector[i] = null;
+    }
+    for (int k = begin; k < end; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      b.pair_grad[kk] =
+          b.volume_ref[static_cast<std::size_t>(b.pairs.j[kk])] * (B * b.pair_grad[kk]);
+    }
+  }
+  b.pair_grad_rev.resize(np);
+  for (std::size_t k = 0; k < np; ++k) {
+    const int r = reverse[k];
+    if (r < 0) throw std::logic_error("SPH reference: neighbour lists are not symmetric");
+    b.pair_grad_rev[k] = b.pair_grad[static_cast<std::size_t>(r)];
+  }
+  b.F.assign(n, Mat3::Identity());
+  b.Fdot.assign(n, Mat3::Zero());
+}
+
+SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const Material& material,
+                      const ModelSwitches& switches, const SphSettings& settings,
+                      const SymmetryPlanes& planes, const Vec3& velocity, double temperature,
+                      unsigned long long seed, NodeSet& nodes) {
+  check_settings(settings);
+  SphBody b;
+  b.name = name;
+  b.material = material;
+  b.constants = derive_constants(material);
+  b.switches = switches;
+  b.settings = settings;
+  b.planes = planes;
+  b.spacing = cloud.spacing;
+  b.node_begin = nodes.size();
+  b.node_end = b.node_begin + cloud.size();
+  const std::size_t n = cloud.size();
+  const std::size_t total = b.node_end;
+  nodes.x0.resize(total, Vec3::Zero());
+  nodes.x.resize(total, Vec3::Zero());
+  nodes.v.resize(total, Vec3::Zero());
+  nodes.f.resize(total, Vec3::Zero());
+  nodes.mass.resize(total, 0.0);
+  nodes.boundary.resize(total, boundary_none);
+  const double h0 = settings.h_over_spacing * cloud.spacing;
+  b.volume0 = cloud.volume;
+  b.outward_normal = cloud.outward_normal;
+  b.X = cloud.x;
+  b.volume_ref = cloud.volume;
+  b.J_ref.assign(n, 1.0);
+  b.F_ref.assign(n, Mat3::Identity());
+  b.h.assign(n, h0);
+  b.state.resize(n);
+  b.VP.assign(n, Mat3::Zero());
+  b.dt_bound.assign(n, infinity);
+  b.active.assign(n, 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t g = b.node_begin + i;
+    nodes.x0[g] = nodes.x[g] = cloud.x[i];
+    nodes.v[g] = velocity;
+    nodes.mass[g] = material.density * cloud.volume[i];
+    nodes.boundary[g] = cloud.boundary[i];
+    const double D0 = switches.damage && material.damage.initial_random_max > 0.0
+                          ? initial_random_damage(seed, i, material.damage.initial_random_max)
+                          : 0.0;
+    b.state[i] = initial_point_state(material, switches, temperature, D0);
+  }
+  sph_build_reference(b);
+  return b;
+}
+
+void sph_update_reference(SphBody& b, const NodeSet& nodes) {
+  const std::size_t n = b.size();
+  const double h0 = b.settings.h_over_spacing * b.spacing;
+  for (std::size_t i = 0; i < n; ++i) {
+    b.X[i] = nodes.x[b.node_begin + i];
+    const double J = b.F[i].determinant();
+    if (b.active[i] && J > 0.0) {
+      b.volume_ref[i] *= J;
+      b.J_ref[i] *= J;
+      b.F_ref[i] = b.F[i] * b.F_ref[i];
+    }
+    // h follows the largest stretch (the widest current spacing), capped.
+    Eigen::SelfAdjointEigenSolver<Mat3> eig(b.F_ref[i].transpose() * b.F_ref[i],
+                                            Eigen::EigenvaluesOnly);
+    const double stretch = std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
+    b.h[i] = h0 * std::clamp(stretch, std::cbrt(b.J_ref[i]), b.settings.max_h_growth);
+  }
+  sph_build_reference(b);
+  ++b.reference_updates;
+  b.update_pending = false;
+}
+
+SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
+  SphStepResult result;
+  const std::size_t n = b.size();
+  std::vector<BlockSums> blocks;
+
+  // Deformation from the reference; update the reference if due.
+  const auto compute_F = [&]() {
+    for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
+      if (!b.active[i]) return;
+      deformation(b, nodes, i, b.F[i], b.Fdot[i]);
+      s.max_deformation = std::max(s.max_deformation, (b.F[i] - Mat3::Identity()).norm());
+    });
+    double m = 0.0;
+    for (const BlockSums& s : blocks) m = std::max(m, s.max_deformation);
+    return m;
+  };
+  result.max_deformation = compute_F();
+  const double threshold = b.settings.update_threshold;
+  if (b.update_pending || (threshold > 0.0 && result.max_deformation > threshold)) {
+    sph_update_reference(b, nodes);
+    result.reference_updated = true;
+    result.max_deformation = compute_F();
+  }
+
+  // Material update and first Piola-Kirchhoff stress.
+  const Material& mat = b.material;
+  const DamageParams& dm = mat.damage;
+  const bool can_fail =
+      b.settings.deactivate_failed && b.switches.damage && dm.initiation != DamageInitiation::none;
+  std::vector<std::uint8_t> failed(n, 0);
+  for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
+    if (!b.active[i]) {
+      b.VP[i].setZero();
+      return;
+    }
+    const Mat3& F = b.F[i];
+    const double detF = F.determinant();
+    if (!(detF > 0.0)) {
+      ++s.inverted;
+      b.VP[i].setZero();
+      return;
+    }
+    PointState& st = b.state[i];
+    if (dt > 0.0) {
+      const Mat3 F_mid = F - 0.5 * dt * b.Fdot[i];
+      const Mat3 L = b.Fdot[i] * F_mid.inverse();
+      const Mat3 D = 0.5 * (L + L.transpose());
+      const Mat3 W = 0.5 * (L - L.transpose());
+      st.s = rotate_symmetric(hughes_winget_rotation(W, dt), st.s);
+      const double J = b.J_ref[i] * detF;
+      const double length = b.spacing * std::cbrt(J);
+      const PointUpdateResult r =
+          update_point(mat, b.constants, b.switches, st, dt * D, J, dt, length);
+      s.max_iterations = std::max(s.max_iterations, r.iterations);
+      s.failed = s.failed || !r.converged;
+      if (can_fail && st.D >= dm.D_max - 1e-12) failed[i] = 1;
+    }
+    b.VP[i] = (b.volume_ref[i] * detF) * st.cauchy() * F.inverse().transpose();
+  });
+  for (const BlockSums& s : blocks) {
+    result.max_return_iterations = std::max(result.max_return_iterations, s.max_iterations);
+    result.return_failed = result.return_failed || s.failed;
+    result.inverted += s.inverted;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (failed[i]) {
+      b.active[i] = 0;
+      b.VP[i].setZero();
+      result.deactivated.push_back(static_cast<int>(i));
+      b.update_pending = true;
+    }
+  }
+
+  // Pair forces, gathered per particle.
+  const double c = b.constants.wave_speed;
+  const double alpha = b.settings.visc_linear, beta = b.settings.visc_quadratic;
+  const double c_hg = b.settings.hourglass_coefficient;
+  const double E = mat.elastic.E;
+  const bool mirrors = !b.planes.empty();
+  // Per-particle quantities the pairs read: current density and the
+  // hourglass modulus ((1 - D) E, or the flow stress once plastic).
+  b.rho.resize(n);
+  b.E_hg.resize(n);
+  for_blocks(n, blocks, [&](std::size_t i, BlockSums&) {
+    const PointState& st = b.state[i];
+    b.rho[i] = mat.density / (b.J_ref[i] * std::max(b.F[i].determinant(), 1e-12));
+    b.E_hg[i] = st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
+  });
+  for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
+    if (!b.active[i]) {
+      b.dt_bound[i] = infinity;
+      return;
+    }
+    const std::size_t gi = b.node_begin + i;
+    const Vec3 xi = nodes.x[gi], vi = nodes.v[gi];
+    const double mi = nodes.mass[gi];
+    const double Vi = b.volume_ref[i];
+    const double rho_i = b.rho[i];
+    const double E_i = b.E_hg[i];
+    const double h_i = b.h[i];
+    const Mat3& VPi = b.VP[i];
+    const Mat3& Fi = b.F[i];
+    Vec3 f_stress = Vec3::Zero(), f_visc = Vec3::Zero(), f_hg = Vec3::Zero();
+    double r_min = infinity, max_mu = 0.0;
+    const int end = b.pairs.offsets[i + 1];
+    for (int k = b.pairs.offsets[i]; k < end; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
+      const std::size_t gj = b.node_begin + j;
+      const Vec3& dX = b.pair_dX[kk];
+      Vec3 pj = b.VP[j] * b.pair_grad_rev[kk];
+      Vec3 xj = nodes.x[gj], vj = nodes.v[gj];
+      Vec3 Fj_dX;  // (S F_j S) dX = S F_j (S dX)
+      const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
+      if (op != 0) {
+        pj = mirror_vector(b.planes, op, pj);
+        xj = mirror_point(b.planes, op, xj);
+        vj = mirror_vector(b.planes, op, vj);
+        Fj_dX = mirror_vector(b.planes, op, b.F[j] * mirror_vector(b.planes, op, dX));
+      } else {
+        Fj_dX = b.F[j] * dX;
+      }
+      f_stress += VPi * b.pair_grad[kk] - pj;
+      if (!b.active[j]) continue;
+
+      const Vec3 x_ij = xj - xi;
+      const double r_sq = x_ij.squaredNorm();
+      if (!(r_sq > 0.0)) continue;
+      const double r = std::sqrt(r_sq);
+      const double inv_r = 1.0 / r;
+      r_min = std::min(r_min, r);
+      double central = 0.0;  // viscosity force along e_ij
+
+      // Monaghan viscosity between approaching particles.
+      const double vx = (vj - vi).dot(x_ij);
+      if (vx < 0.0) {
+        const double hij = 0.5 * (h_i + b.h[j]);
+        const double mu = hij * vx / (r_sq + 0.01 * hij * hij);
+        const double Pi = (-alpha * c * mu + beta * mu * mu) / (0.5 * (rho_i + b.rho[j]));
+        central = mi * nodes.mass[gj] * Pi * static_cast<double>(b.pair_dw[kk]);
+        max_mu = std::max(max_mu, -mu);
+      }
+      f_visc += (central * inv_r) * x_ij;
+
+      // Ganzenmueller hourglass control.
+      if (c_hg > 0.0) {
+        const Vec3 eps = 0.5 * (Fi * dX + Fj_dX) - x_ij;
+        const double delta = eps.dot(x_ij) * inv_r;
+        const double E_ij = 0.5 * (E_i + b.E_hg[j]);
+        f_hg -= (c_hg * E_ij * Vi * static_cast<double>(b.pair_w[kk]) * delta / dX.squaredNorm() *
+                 inv_r) *
+                x_ij;
+      }
+    }
+    nodes.f[gi] += f_stress + f_visc + f_hg;
+    s.viscosity_power -= f_visc.dot(vi);
+    s.hourglass_power -= f_hg.dot(vi);
+    // A particle without active neighbours keeps the bound of its spacing.
+    const double L_i = r_min < infinity ? r_min : b.h[i] / b.settings.h_over_spacing;
+    const double v_sig = c + 1.2 * (alpha * c + beta * max_mu);
+    b.dt_bound[i] = L_i / v_sig;
+    s.dt_min = std::min(s.dt_min, b.dt_bound[i]);
+  });
+  result.dt_stable = infinity;
+  for (const BlockSums& s : blocks) {
+    result.dt_stable = std::min(result.dt_stable, s.dt_min);
+    result.hourglass_power += s.hourglass_power;
+    result.viscosity_power += s.viscosity_power;
+  }
+  return result;
+}
+
+double sph_internal_energy(const SphBody& b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b.active[i]) sum += b.volume0[i] * b.state[i].e;
+  }
+  return sum;
+}
+
+}  // namespace splat

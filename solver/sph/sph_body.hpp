@@ -1,0 +1,177 @@
+// Total-Lagrangian SPH body: particles whose neighbours, kernel gradients and
+// kernel correction are fixed in a reference configuration, with stresses
+// from the same material kernel as the finite elements.
+//
+// Particles live in the shared NodeSet (solver/fe/fe_body.hpp) as the nodes of
+// FE bodies do: a body owns the contiguous range [node_begin, node_end), and
+// positions, velocities, forces and masses are nodes.x, v, f and mass. So the
+// time loop of solver/core treats SPH particles exactly like nodes: it calls
+// sph_internal_forces where it calls fe_internal_forces.
+//
+// Formulation (Ganzenmueller 2015, CMAME 286; Vignjevic et al. 2006; Bonet &
+// Lok 1999 for the correction). With reference positions X, reference volumes
+// V, h_ij = (h_i + h_j)/2, pairs (i, j, op) from sph_neighbours.hpp (op: the
+// mirror across symmetry planes, S its reflection matrix, S = I for op = 0),
+// dX_ij = op(X_j) - X_i, r0 = |dX_ij|:
+//   g_ij  = -W'(r0, h_ij) dX_ij / r0                 (grad_i W_ij)
+//   C_i   = sum_j V_j dX_ij (x) g_ij                 (symmetric, positive)
+//   gc_ij = C_i^-1 g_ij                              (corrected gradient; weak
+//           directions of C_i, eigenvalue < min_correction_eigenvalue, are
+//           bounded and blended to a rigid map: see sph_build_reference)
+//   F_i   = sum_j V_j (op(x_j) - x_i) (x) gc_ij      (exact for linear fields,
+//                                                    free surfaces included)
+//   Fdot_i = sum_j V_j (S v_j - v_i) (x) gc_ij
+//   L_i   = Fdot_i F_mid^-1, F_mid = F_i - dt/2 Fdot_i (mid-step, as the FE bodies)
+// Stress: Jaumann (Hughes-Winget) rotation of the deviator and update_point
+// with d_eps = sym(L) dt and J = J_ref det F (the volume ratio to the initial
+// volume), then P_i = det(F_i) sigma_i F_i^-T (first Piola-Kirchhoff).
+// Forces, the gradient of sum_i V_i W(F_i) (so they conserve linear and angular
+// momentum, sigma being symmetric):
+//   f_i = sum_j V_i V_j (P_i gc_ij - S P_j gc_ji)    (gc_ji: of the reverse pair (j, i, op))
+// Monaghan artificial viscosity (Monaghan 1992), between approaching pairs
+// (v_ij . x_ij < 0, x_ij = op(x_j) - x_i, v_ij = S v_j - v_i, r = |x_ij|):
+//   mu_ij = h_ij v_ij . x_ij / (r^2 + 0.01 h_ij^2),  m/s
+//   Pi_ij = (-alpha c mu_ij + beta mu_ij^2) / rho_ij,  rho_ij = (rho_i + rho_j)/2
+//   f_i  += m_i m_j Pi_ij W'(r0) x_ij / r            (repulsive, dissipative)
+// with c the P-wave speed; thesis defaults alpha = 0.8, beta = 4 (2.1.3).
+// Hourglass control (Ganzenmueller 2015, the form of LAMMPS MACHDYN): the
+// error of pair ij against the mean linear map, eps_ij = Fbar dX_ij - x_ij,
+// Fbar = (F_i + S F_j S)/2, projected on the pair, delta_ij = eps_ij . x_ij / r:
+//   f_i  += -c_hg E_ij V_i V_j W_ij delta_ij / r0^2 x_ij / r
+// E_ij the mean over i, j of (1 - D) E, or of the flow stress sigma_y once a
+// particle's plastic strain exceeds 1e-3 (so the control does not stiffen
+// plastic flow). Units: Pa m^3 m^3 m^-3 m m^-2 = N.
+// Time step bound (stated, not the thesis's garbled eq. 2.2): per particle
+//   dt_i = min_j r_ij / (c + 1.2 (alpha c + beta max_j |mu_ij|))
+// with min_j r_ij the current distance to the nearest neighbour (the spacing
+// d on the initial lattice; it shrinks with compression along any pair,
+// whatever the reference) and the signal speed of Monaghan (1992); the
+// caller multiplies by its stability coefficient.
+// Reference update: when max_i ||F_i - I||_F (Frobenius) exceeds
+// update_threshold, the whole body is re-referenced at the start of
+// sph_internal_forces: X = x, V_i *= det F_i, J_ref *= det F_i, F_ref = F F_ref
+// (the deformation from the initial configuration), h_i = h_0 times the
+// largest principal stretch of F_ref (so the kernel still reaches neighbours
+// along the most stretched direction; J_ref^(1/3) would starve it), capped at
+// max_h_growth h_0 (h_0 = h_over_spacing d), neighbours re-found by the
+// cell search and corrections rebuilt; F is then computed afresh from the new
+// reference (F = I, Fdot the current velocity gradient). Stresses, plastic
+// strain, damage, temperature and energy are kept (they are Cauchy/spatial).
+// Damage: as in the material kernel. Particles are never deleted; with
+// deactivate_failed a particle at D_max stops carrying stress and is dropped
+// from all neighbour lists at the next reference update (forced at the next
+// call); it then flies freely and its energy leaves the internal energy (it is
+// reported in deactivated_energy).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/common/types.hpp"
+#include "solver/fe/fe_body.hpp"
+#include "solver/material/material.hpp"
+#include "solver/material/point_update.hpp"
+#include "solver/sph/sph_kernel.hpp"
+#include "solver/sph/sph_neighbours.hpp"
+#include "solver/sph/sph_particles.hpp"
+
+namespace splat {
+
+struct SphSettings {
+  SphKernel kernel = SphKernel::cubic_spline;
+  double h_over_spacing = 1.0;         // smoothing length / particle spacing, -
+  double visc_linear = 0.8;            // Monaghan alpha, -
+  double visc_quadratic = 4.0;         // Monaghan beta, -
+  double hourglass_coefficient = 1.0;  // Ganzenmueller c_hg, -
+  double update_threshold = 1.0;       // ||F - I||_F that triggers a reference update; 0 = never
+  double min_correction_eigenvalue = 0.05;  // lambda_min of the kernel correction, -
+  double max_h_growth = 2.0;                // cap on h / h_0 at reference updates, -
+  bool deactivate_failed = false;           // particles at D_max stop carrying stress
+};
+
+struct SphBody {
+  std::string name;
+  Material material;
+  MaterialConstants constants;
+  ModelSwitches switches;
+  SphSettings settings;
+  SymmetryPlanes planes;                     // mirrored-ghost symmetry planes (set once)
+  std::size_t node_begin = 0, node_end = 0;  // this body's range in the NodeSet
+  double spacing = 0.0;                      // initial particle spacing d, m
+
+  // Set once.
+  std::vector<double> volume0;       // initial volume m / rho0, m^3
+  std::vector<Vec3> outward_normal;  // of `curved` boundary particles, else zero
+
+  // Set at the start and at each reference update.
+  std::vector<Vec3> X;               // reference positions, m
+  std::vector<double> volume_ref;    // reference volumes, m^3
+  std::vector<double> J_ref;         // volume_ref / volume0, -
+  std::vector<Mat3> F_ref;           // deformation of the reference from the initial state, -
+  std::vector<double> h;             // smoothing lengths, m
+  NeighbourList pairs;               // reference neighbours (local indices)
+  std::vector<Vec3> pair_grad;       // V_j gc_ij (corrected gradient times volume), 1/m
+  std::vector<Vec3> pair_grad_rev;   // V_i gc_ji of the reverse pair (a copy, in order), 1/m
+  std::vector<Vec3> pair_dX;         // op(X_j) - X_i, m
+  std::vector<float> pair_w;         // V_j W(r0, h_ij), - (float: read by the
+  std::vector<float> pair_dw;        //   stabilising terms only), W'(r0, h_ij), 1/m^4
+  std::vector<Mat3> null_projector;  // I - C^+ C (zero unless C_i is singular)
+  long long reference_updates = 0;   // count of updates so far
+  bool update_pending = false;       // forces an update at the next call
+
+  // Every step.
+  std::vector<PointState> state;     // material state
+  std::vector<Mat3> F;               // deformation gradient from the reference, -
+  std::vector<Mat3> Fdot;            // its rate, 1/s
+  std::vector<Mat3> VP;              // reference volume times first Piola-Kirchhoff stress, N m
+  std::vector<double> dt_bound;      // per-particle time-step bound, s
+  std::vector<double> rho;           // current density, kg/m^3
+  std::vector<double> E_hg;          // hourglass modulus, Pa
+  std::vector<std::uint8_t> active;  // 0 once deactivated
+
+  std::size_t size() const { return node_end - node_begin; }
+};
+
+struct SphStepResult {
+  double dt_stable = 0.0;        // min over active particles of dt_i, s
+  double hourglass_power = 0.0;  // -sum f_hg . v, W (the stiffness form can return energy)
+  double viscosity_power = 0.0;  // -sum f_visc . v >= 0, W
+  int max_return_iterations = 0;
+  bool return_failed = false;
+  long long inverted = 0;          // active particles with det F <= 0 (carry no stress)
+  double max_deformation = 0.0;    // max ||F - I||_F after any update, -
+  bool reference_updated = false;  // the body was re-referenced in this call
+  std::vector<int> deactivated;    // particles (local) deactivated in this call
+};
+
+// Builds a body from a particle cloud and appends its particles to `nodes`:
+// positions, the initial velocity, boundary bits, masses rho0 V, the initial
+// material state at `temperature` (K) with, when damage is on, the
+// reproducible random initial damage, and the reference configuration.
+// Throws std::invalid_argument for bad settings (non-positive h_over_spacing,
+// negative coefficients) or planes sph_neighbours rejects.
+SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const Material& material,
+                      const ModelSwitches& switches, const SphSettings& settings,
+                      const SymmetryPlanes& planes, const Vec3& velocity, double temperature,
+                      unsigned long long seed, NodeSet& nodes);
+
+// Internal forces of one body, called once per step after the particles moved
+// to x_{n+1} with velocity v_{n+1/2} (same contract as fe_internal_forces):
+// reference update if due, F and Fdot, material update (skipped for dt = 0,
+// the force evaluation before the first step), P, then stress, viscosity and
+// hourglass forces ADDED to nodes.f. Each particle gathers its own pairs, so
+// the result does not depend on the number of OpenMP threads.
+SphStepResult sph_internal_forces(SphBody& body, NodeSet& nodes, double dt);
+
+// Re-references the body at the current positions (see the header comment).
+void sph_update_reference(SphBody& body, const NodeSet& nodes);
+
+// Sum over active particles of V0 e, J.
+double sph_internal_energy(const SphBody& body);
+
+// Recomputes the reference neighbourhood and kernel correction from body.X,
+// body.h, body.volume_ref (used by make_sph_body and sph_update_reference).
+void sph_build_reference(SphBody& body);
+
+}  // namespace splat

@@ -1,0 +1,294 @@
+// The cohesive law of one pair (solver/adhesion/cohesive_law.hpp): every
+// link-state transition on a two-pair toy, the activation and erosion tests,
+// and the energy bookkeeping of one step against the kinetic energy of two
+// point masses computed independently.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "solver/adhesion/cohesive_law.hpp"
+#include "solver/material/johnson_cook.hpp"
+#include "solver/material/point_update.hpp"
+
+namespace splat {
+namespace {
+
+AdhesionParams yield_drop_params(double drop, ActivationSides sides) {
+  AdhesionParams p;
+  p.G_c = 0.2;
+  p.activation = ActivationRule::yield_drop;
+  p.yield_drop = drop;
+  p.sides = sides;
+  p.D_adh_max = 0.5;
+  return p;
+}
+
+// Two point masses on a line, the pair normal along +x from 1 to 2: the
+// separation rate is v2 - v1; a tension impulse I lowers it (v1 += I/m1,
+// v2 -= I/m2). Kinetic energy computed from the velocities, not from dW.
+struct TwoMasses {
+  double m1, m2, v1, v2;
+  double rate() const { return v2 - v1; }
+  double h() const { return 1.0 / m1 + 1.0 / m2; }
+  double kinetic() const { return 0.5 * m1 * v1 * v1 + 0.5 * m2 * v2 * v2; }
+  void apply_tension(double I) {
+    v1 += I / m1;
+    v2 -= I / m2;
+  }
+};
+
+TEST(cohesive_law, activation_either_and_both_sides) {
+  const SideYield dropped{69.0e6, 100.0e6};  // 31 % below its peak
+  const SideYield steady{95.0e6, 100.0e6};   // 5 % below
+  AdhesionParams either = yield_drop_params(0.30, ActivationSides::either);
+  AdhesionParams both = yield_drop_params(0.30, ActivationSides::both);
+  EXPECT_TRUE(activation_met(either, dropped, steady));
+  EXPECT_TRUE(activation_met(either, steady, dropped));
+  EXPECT_FALSE(activation_met(either, steady, steady));
+  EXPECT_FALSE(activation_met(both, dropped, steady));
+  EXPECT_FALSE(activation_met(both, steady, dropped));
+  EXPECT_TRUE(activation_met(both, dropped, dropped));
+  // The threshold itself counts as a drop: sigma_y <= (1 - x) peak.
+  EXPECT_TRUE(side_yield_dropped(either, SideYield{70.0e6, 100.0e6}));
+  EXPECT_FALSE(side_yield_dropped(either, SideYield{70.1e6, 100.0e6}));
+  // A rigid side never drops: `either` rests on the other side, `both` never holds.
+  EXPECT_TRUE(activation_met(either, rigid_side, dropped));
+  EXPECT_FALSE(activation_met(both, rigid_side, dropped));
+  // Rule none: always met, whatever the yield stresses.
+  AdhesionParams none;
+  EXPECT_TRUE(activation_met(none, steady, steady));
+}
+
+TEST(cohesive_law, erosion_on_either_side_only_with_a_limit) {
+  AdhesionParams p;
+  EXPECT_FALSE(erosion_met(p, 1.0, 1.0));  // no D_adh_max: never
+  p.D_adh_max = 0.5;
+  EXPECT_FALSE(erosion_met(p, 0.49, 0.0));
+  EXPECT_TRUE(erosion_met(p, 0.5, 0.0));
+  EXPECT_TRUE(erosion_met(p, 0.0, 0.7));
+}
+
+// The rate-free yield stress is what activation must watch: a point that
+// hardens at a high rate and then unloads keeps its static peak, while the
+// rate-dependent sigma_y falls back by the rate factor. Checked on the
+// material point update that fills PointState.
+TEST(cohesive_law, static_peak_does_not_see_the_rate_factor) {
+  Material m;
+  m.strength.A = 90e6, m.strength.B = 292e6, m.strength.n = 0.31, m.strength.C = 0.025;
+  m.strength.eps_dot_0 = 1.0, m.strength.m = 1.09, m.strength.T_ref = 300.0;
+  m.strength.T_melt = 1356.0;
+  m.elastic.E = 124e9, m.elastic.nu = 0.34, m.density = 8960.0;
+  m.thermal.c_p = 385.0;
+  ModelSwitches sw;
+  sw.damage = false;
+  sw.thermal_softening = false;
+  sw.adiabatic_heating = false;
+  const MaterialConstants mc = derive_constants(m);
+  PointState st = initial_point_state(m, sw, 300.0, 0.0);
+  Mat3 d = Mat3::Zero();
+  d(0, 1) = d(1, 0) = 1e-3;  // shear at 1e7 /s with dt = 1e-10 s
+  for (int i = 0; i < 20; ++i) update_point(m, mc, sw, st, d, 1.0, 1e-10, 1e-3);
+  ASSERT_GT(st.sigma_y_peak, 1.3 * st.sigma_y_static);  // rate factor ~ 1.4
+  update_point(m, mc, sw, st, -d, 1.0, 1e-10, 1e-3);    // elastic unloading
+  const AdhesionParams p = yield_drop_params(0.2, ActivationSides::either);
+  EXPECT_DOUBLE_EQ(st.sigma_y_static_peak, st.sigma_y_static);  // hardening only, no drop
+  EXPECT_FALSE(side_yield_dropped(p, {st.sigma_y_static, st.sigma_y_static_peak}));
+  // The rate-dependent peak would have faked a > 20 % drop.
+  EXPECT_TRUE(side_yield_dropped(p, {st.sigma_y_static, st.sigma_y_peak}));
+}
+
+// Two pairs through every transition. Pair A (yield-drop, either side):
+// none -> contact -> active (after separating, on a later drop) -> exhausted.
+// Pair B: none -> contact -> active -> eroded. Pair C (rule none): active on
+// first touch. Pair D: damaged before it activates: contact -> eroded.
+TEST(cohesive_law, link_state_transitions_on_a_two_pair_toy) {
+  const AdhesionParams p = yield_drop_params(0.3, ActivationSides::either);
+  const double area = 1.0;  // m^2: budget 0.2 J
+  struct Pair {
+    LinkState state = LinkState::none;
+    double work = 0.0;
+  };
+  Pair a, b;
+  const SideYield fresh{100e6, 100e6}, soft{60e6, 100e6};
+
+  // Step 1: neither touches.
+  a.state = next_link_state(a.state, p.activation, {false, false, false, false});
+  b.state = next_link_state(b.state, p.activation, {false, false, false, false});
+  EXPECT_EQ(a.state, LinkState::none);
+  EXPECT_EQ(b.state, LinkState::none);
+  // An untouched pair ignores activation and damage.
+  EXPECT_EQ(next_link_state(LinkState::none, p.activation, {false, true, true, false}),
+            LinkState::none);
+
+  // Step 2: both touch, nothing has softened yet.
+  a.state = next_link_state(a.state, p.activation,
+                            {true, activation_met(p, fresh, fresh), erosion_met(p, 0, 0), false});
+  b.state = next_link_state(b.state, p.activation,
+                            {true, activation_met(p, fresh, fresh), erosion_met(p, 0, 0), false});
+  EXPECT_EQ(a.state, LinkState::contact);
+  EXPECT_EQ(b.state, LinkState::contact);
+
+  // Step 3: A has separated (not touching) when its side softens: it still
+  // activates ("while in contact or later"). B softens while touching.
+  a.state = next_link_state(a.state, p.activation,
+                            {false, activation_met(p, soft, fresh), erosion_met(p, 0, 0), false});
+  b.state = next_link_state(b.state, p.activation,
+                            {true, activation_met(p, fresh, soft), erosion_met(p, 0, 0), false});
+  EXPECT_EQ(a.state, LinkState::active);
+  EXPECT_EQ(b.state, LinkState::active);
+
+  // Step 4: A opens fast enough to spend its budget in one step (relative
+  // kinetic energy 0.5 * 2/3 * 1^2 = 1/3 J > 0.2 J); B opens slowly.
+  TwoMasses ma{1.0, 2.0, -1.0 / 3.0, 2.0 / 3.0};
+  const CohesiveStep sa = cohesive_step(p, area, a.work, ma.rate(), ma.h(), 1e-3);
+  a.work += sa.work;
+  a.state = next_link_state(a.state, p.activation, {false, true, false, sa.exhausted});
+  EXPECT_TRUE(sa.exhausted);
+  EXPECT_EQ(a.state, LinkState::exhausted);
+  EXPECT_DOUBLE_EQ(a.work, 0.2);
+  TwoMasses mb{1.0, 2.0, 0.0, 0.01};
+  const CohesiveStep sb = cohesive_step(p, area, b.work, mb.rate(), mb.h(), 1e-3);
+  b.work += sb.work;
+  b.state = next_link_state(b.state, p.activation, {true, true, false, sb.exhausted});
+  EXPECT_FALSE(sb.exhausted);
+  EXPECT_EQ(b.state, LinkState::active);
+
+  // Step 5: damage on B's second side reaches D_adh_max.
+  b.state = next_link_state(b.state, p.activation, {true, true, erosion_met(p, 0.1, 0.5), false});
+  EXPECT_EQ(b.state, LinkState::eroded);
+
+  // Final states stay final whatever happens next.
+  for (LinkState s : {LinkState::exhausted, LinkState::eroded}) {
+    EXPECT_EQ(next_link_state(s, p.activation, {true, true, false, false}), s);
+    EXPECT_EQ(next_link_state(s, p.activation, {true, true, true, true}), s);
+  }
+  // Erosion wins over exhaustion in the same step.
+  EXPECT_EQ(next_link_state(LinkState::active, p.activation, {true, true, true, true}),
+            LinkState::eroded);
+  // Rule none: active on first touch; activation flag irrelevant.
+  EXPECT_EQ(next_link_state(LinkState::none, ActivationRule::none, {true, false, false, false}),
+            LinkState::active);
+  // Damaged before activation: the pair can no longer bond.
+  EXPECT_EQ(next_link_state(LinkState::contact, p.activation, {true, false, true, false}),
+            LinkState::eroded);
+  // A contact link cannot be exhausted (it carries no tension).
+  EXPECT_EQ(next_link_state(LinkState::contact, p.activation, {true, false, false, true}),
+            LinkState::contact);
+  EXPECT_STREQ(to_string(LinkState::exhausted), "exhausted");
+}
+
+TEST(cohesive_law, tension_cap) {
+  AdhesionParams p;
+  EXPECT_EQ(max_tension(p, 2.0), std::numeric_limits<double>::infinity());
+  p.sigma_c = 3.0e6;
+  EXPECT_DOUBLE_EQ(max_tension(p, 2.0e-12), 6.0e-6);
+}
+
+// Griffith form (no cap): the impulse holds the pair, the work is the whole
+// relative kinetic energy, and the kinetic energy lost equals dW exactly.
+TEST(cohesive_law, griffith_step_holds_the_pair_and_charges_the_kinetic_energy) {
+  AdhesionParams p;
+  p.G_c = 10.0;
+  TwoMasses m{1.5, 0.5, -0.2, 0.7};
+  const double K0 = m.kinetic();
+  const CohesiveStep s = cohesive_step(p, 1.0, 0.0, m.rate(), m.h(), 1e-3);
+  m.apply_tension(s.impulse);
+  EXPECT_FALSE(s.exhausted);
+  EXPECT_NEAR(m.rate(), 0.0, 1e-15);
+  const double mu = 1.5 * 0.5 / 2.0;
+  EXPECT_NEAR(s.work, 0.5 * mu * 0.9 * 0.9, 1e-15);
+  EXPECT_NEAR(K0 - m.kinetic(), s.work, 1e-15);
+}
+
+// With a cap, the impulse is sigma_c A dt and the kinetic energy lost is dW,
+// for any dt (one step, no approximation in time).
+TEST(cohesive_law, capped_step_work_equals_kinetic_energy_lost) {
+  AdhesionParams p;
+  p.G_c = 10.0;
+  p.sigma_c = 40.0;
+  const double area = 0.25;  // cap 10 N
+  for (double dt : {1e-4, 1e-2, 0.05}) {
+    TwoMasses m{1.0, 3.0, 0.1, 0.9};
+    const double K0 = m.kinetic();
+    const CohesiveStep s = cohesive_step(p, area, 0.0, m.rate(), m.h(), dt);
+    m.apply_tension(s.impulse);
+    EXPECT_DOUBLE_EQ(s.impulse, 10.0 * dt);
+    EXPECT_GT(m.rate(), 0.0);
+    EXPECT_NEAR(K0 - m.kinetic(), s.work, 1e-15 * K0) << dt;
+    EXPECT_GT(s.work, 0.0);
+  }
+  // Above the holding impulse the cap does not bind: the pair is held, not pulled back.
+  TwoMasses m{1.0, 3.0, 0.1, 0.1001};
+  const CohesiveStep s = cohesive_step(p, area, 0.0, m.rate(), m.h(), 0.05);
+  m.apply_tension(s.impulse);
+  EXPECT_NEAR(m.rate(), 0.0, 1e-15);
+  // The solver may ask for less than the hold; never for more, never negative.
+  EXPECT_DOUBLE_EQ(cohesive_step(p, area, 0.0, 0.8, 4.0 / 3.0, 0.05, 0.1).impulse, 0.1);
+  EXPECT_DOUBLE_EQ(cohesive_step(p, area, 0.0, 0.8, 4.0 / 3.0, 0.05, -1.0).impulse, 0.0);
+}
+
+// The step that spends the budget: work exactly W_rem, kinetic energy lost
+// exactly W_rem, and the impulse smaller than the one asked for.
+TEST(cohesive_law, exhausting_step_spends_exactly_the_remaining_budget) {
+  for (bool capped : {false, true}) {
+    AdhesionParams p;
+    p.G_c = 0.2;
+    if (capped) p.sigma_c = 5.0;
+    const double area = 1.0, dt = 0.1, W = 0.15;  // W_rem = 0.05 J
+    TwoMasses m{1.0, 2.0, -1.0 / 3.0, 2.0 / 3.0};
+    const double K0 = m.kinetic();
+    const CohesiveStep s = cohesive_step(p, area, W, m.rate(), m.h(), dt);
+    m.apply_tension(s.impulse);
+    EXPECT_TRUE(s.exhausted) << capped;
+    EXPECT_DOUBLE_EQ(s.work, 0.05);
+    EXPECT_NEAR(K0 - m.kinetic(), 0.05, 1e-15) << capped;
+    EXPECT_LT(s.impulse, capped ? 5.0 * dt : 1.0 / m.h());
+    EXPECT_GT(m.rate(), 0.0);
+  }
+  // G_c = 0: the first opening step exhausts the link with no impulse.
+  AdhesionParams p0;
+  const CohesiveStep s0 = cohesive_step(p0, 1.0, 0.0, 1.0, 1.5, 1e-3);
+  EXPECT_TRUE(s0.exhausted);
+  EXPECT_EQ(s0.impulse, 0.0);
+  EXPECT_EQ(s0.work, 0.0);
+}
+
+TEST(cohesive_law, closing_pairs_carry_no_tension) {
+  AdhesionParams p;
+  p.G_c = 1.0;
+  for (double g : {-1.0, 0.0}) {
+    const CohesiveStep s = cohesive_step(p, 1.0, 0.0, g, 1.5, 1e-3);
+    EXPECT_EQ(s.impulse, 0.0);
+    EXPECT_EQ(s.work, 0.0);
+    EXPECT_FALSE(s.exhausted);
+  }
+  EXPECT_EQ(cohesive_step(p, 1.0, 0.0, 1.0, 0.0, 1e-3).impulse, 0.0);  // immovable pair
+}
+
+// Many capped steps: the work sums to the budget and never beyond, and the
+// kinetic energy lost matches the work summed step by step.
+TEST(cohesive_law, work_never_exceeds_the_budget) {
+  AdhesionParams p;
+  p.G_c = 0.2;
+  p.sigma_c = 0.5;
+  TwoMasses m{1.0, 2.0, -1.0 / 3.0, 2.0 / 3.0};
+  const double K0 = m.kinetic();
+  double W = 0.0;
+  bool exhausted = false;
+  int steps = 0;
+  while (!exhausted && steps < 100000) {
+    const CohesiveStep s = cohesive_step(p, 1.0, W, m.rate(), m.h(), 1e-3);
+    m.apply_tension(s.impulse);
+    W += s.work;
+    exhausted = s.exhausted;
+    ++steps;
+    ASSERT_LE(W, 0.2);
+  }
+  EXPECT_TRUE(exhausted);
+  EXPECT_DOUBLE_EQ(W, 0.2);
+  EXPECT_NEAR(K0 - m.kinetic(), W, 1e-13);
+}
+
+}  // namespace
+}  // namespace splat
