@@ -28,7 +28,6 @@ constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr std::size_t block_size = 64;
 // Smaller loops run on one thread: forking costs more than they take.
 constexpr long long min_parallel_blocks = 4;
-constexpr long long min_parallel_nodes = 512;
 
 int thread_id() {
 #ifdef _OPENMP
@@ -320,8 +319,8 @@ void hex_element_pair(FeBody& body, const NodeSet& nodes, std::size_t e, double 
     const Vec3& v0 = nodes.v[c0[a]];
     const Vec3& v1 = nodes.v[c1[a]];
     for (int i = 0; i < 3; ++i) {
-      x.u[i][a] = _mm_set_pd(x1[i], x0[i]);
-      v.u[i][a] = _mm_set_pd(v1[i], v0[i]);
+      x.u[i][a] = make_pair(x0[i], x1[i]);
+      v.u[i][a] = make_pair(v0[i], v1[i]);
     }
   }
   const Hex8FieldT<Pair> xm = hex8_modes_cm(x);
@@ -383,8 +382,8 @@ void hex_element_pair(FeBody& body, const NodeSet& nodes, std::size_t e, double 
   }
   Pair sigma[3][3], Qp[4][3];
   for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) sigma[i][j] = _mm_set_pd(ms[1].sigma(i, j), ms[0].sigma(i, j));
-    for (int k = 0; k < 4; ++k) Qp[k][i] = _mm_set_pd(Q[1][k][i], Q[0][k][i]);
+    for (int j = 0; j < 3; ++j) sigma[i][j] = make_pair(ms[0].sigma(i, j), ms[1].sigma(i, j));
+    for (int k = 0; k < 4; ++k) Qp[k][i] = make_pair(Q[0][k][i], Q[1][k][i]);
   }
   const Hex8FieldT<Pair> f = hex8_forces_cm(sigma, g, xm, Qp);
   for (int l = 0; l < 2; ++l) {
@@ -442,6 +441,76 @@ void quad_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, 
   std::array<Vec3, 8>& out = body.elem_force[e];
   for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], 0.0);
   finish_element(body, e, V, ms, hg_power, sums, erode);
+}
+
+// Two neighbouring quads at once in the lanes of Pair, as hex_element_pair:
+// lane by lane the arithmetic of quad_element (viscous hourglass control
+// only), so the same results to the bit. Falls back to quad_element for each
+// element when either is inverted.
+void quad_element_pair(FeBody& body, const NodeSet& nodes, std::size_t e, double dt,
+                       BlockSums& sums, std::vector<int>& erode) {
+  const std::array<int, 8>& c0 = body.conn[e];
+  const std::array<int, 8>& c1 = body.conn[e + 1];
+  Quad4FieldT<Pair> x, v;
+  for (int a = 0; a < 4; ++a) {
+    const Vec3& x0 = nodes.x[c0[a]];
+    const Vec3& x1 = nodes.x[c1[a]];
+    const Vec3& v0 = nodes.v[c0[a]];
+    const Vec3& v1 = nodes.v[c1[a]];
+    for (int i = 0; i < 2; ++i) {
+      x.u[i][a] = make_pair(x0[i], x1[i]);
+      v.u[i][a] = make_pair(v0[i], v1[i]);
+    }
+  }
+  const Quad4GradientCmT<Pair> g = quad4_axisym_gradient_cm(x);
+  const double V[2] = {g.volume[0], g.volume[1]};
+  if (!(g.area[0] > 0.0) || !(V[0] > 0.0) || !(g.area[1] > 0.0) || !(V[1] > 0.0)) {
+    quad_element(body, nodes, e, dt, sums, erode);
+    quad_element(body, nodes, e + 1, dt, sums, erode);
+    return;
+  }
+  const Pair lc = quad4_axisym_characteristic_length_cm(x, g.area);
+  const double L_c[2] = {lc[0], lc[1]};
+  for (int l = 0; l < 2; ++l) {
+    body.volume[e + l] = V[l];
+    body.char_length[e + l] = L_c[l];
+  }
+
+  Pair L2[2][2], L_thth;
+  if (dt > 0.0) {
+    Quad4FieldT<Pair> xm;
+    for (int i = 0; i < 2; ++i)
+      for (int a = 0; a < 4; ++a) xm.u[i][a] = x.u[i][a] - (0.5 * dt) * v.u[i][a];
+    quad4_axisym_velocity_gradient_cm(v, quad4_axisym_gradient_cm(xm), L2, L_thth);
+  } else {
+    L2[0][0] = L2[0][1] = L2[1][0] = L2[1][1] = L_thth = Pair{};
+  }
+  MaterialStep ms[2];
+  for (int l = 0; l < 2; ++l) {
+    Mat3 L;
+    L << L2[0][0][l], L2[0][1][l], 0.0,  //
+        L2[1][0][l], L2[1][1][l], 0.0,   //
+        0.0, 0.0, L_thth[l];
+    ms[l] = material_step(body, e + l, L, dt, V[l], L_c[l], sums);
+  }
+
+  Quad4FieldT<Pair> f;
+  auto sigma = [&ms](int i, int j) { return make_pair(ms[0].sigma(i, j), ms[1].sigma(i, j)); };
+  quad4_axisym_stress_forces_cm(sigma(0, 0), sigma(0, 1), sigma(1, 0), sigma(1, 1), sigma(2, 2), g,
+                                f);
+  const std::array<Pair, 4> gamma = quad4_axisym_hourglass_vector_cm(x, g);
+  const double c_hg = body.settings.hourglass_coefficient;
+  double a_h[2];
+  for (int l = 0; l < 2; ++l) {
+    const double rho = body.element_mass[e + l] / V[l];
+    a_h[l] = quad4_axisym_viscous_hourglass_coefficient(c_hg, rho, ms[l].c, g.rbar[l], g.area[l]);
+  }
+  const Pair hg_power = quad4_axisym_hourglass_viscous_cm(gamma, v, make_pair(a_h[0], a_h[1]), f);
+  for (int l = 0; l < 2; ++l) {
+    std::array<Vec3, 8>& out = body.elem_force[e + l];
+    for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], 0.0);
+    finish_element(body, e + l, V[l], ms[l], hg_power[l], sums, erode);
+  }
 }
 
 }  // namespace
@@ -521,26 +590,52 @@ FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
   std::vector<BlockSums> blocks(num_blocks);
   std::vector<std::vector<int>> erode(static_cast<std::size_t>(max_threads()));
   const bool hex = body.kind == ElementKind::hex8;
+  const bool pair_quads = !body.settings.stiffness_hourglass;  // quad pairs: viscous form only
   const long long nb = static_cast<long long>(num_blocks);
 
-  SPLAT_OMP(omp parallel for schedule(static) if (nb >= min_parallel_blocks))
-  for (long long bk = 0; bk < nb; ++bk) {
-    const std::size_t k = static_cast<std::size_t>(bk);
-    BlockSums& sums = blocks[k];
-    std::vector<int>& my_erode = erode[static_cast<std::size_t>(thread_id())];
-    const std::size_t end = std::min(ne, (k + 1) * block_size);
-    for (std::size_t e = k * block_size; e < end; ++e) {
-      if (!body.active[e]) continue;
-      if (hex) {
-        if (e + 1 < end && body.active[e + 1]) {
-          hex_element_pair(body, nodes, e, dt, sums, my_erode);
+  const long long first = static_cast<long long>(body.node_begin);
+  const long long last = static_cast<long long>(body.node_end);
+
+  // One parallel region (one fork and join per step) for the element loop
+  // and the node gather, which waits for it at the implicit barrier.
+  SPLAT_OMP(omp parallel if (nb >= min_parallel_blocks)) {
+    SPLAT_OMP(omp for schedule(static))
+    for (long long bk = 0; bk < nb; ++bk) {
+      const std::size_t k = static_cast<std::size_t>(bk);
+      BlockSums& sums = blocks[k];
+      std::vector<int>& my_erode = erode[static_cast<std::size_t>(thread_id())];
+      const std::size_t end = std::min(ne, (k + 1) * block_size);
+      for (std::size_t e = k * block_size; e < end; ++e) {
+        if (!body.active[e]) continue;
+        if (hex) {
+          if (e + 1 < end && body.active[e + 1]) {
+            hex_element_pair(body, nodes, e, dt, sums, my_erode);
+            ++e;
+          } else {
+            hex_element(body, nodes, e, dt, sums, my_erode);
+          }
+        } else if (pair_quads && e + 1 < end && body.active[e + 1]) {
+          quad_element_pair(body, nodes, e, dt, sums, my_erode);
           ++e;
         } else {
-          hex_element(body, nodes, e, dt, sums, my_erode);
+          quad_element(body, nodes, e, dt, sums, my_erode);
         }
-      } else {
-        quad_element(body, nodes, e, dt, sums, my_erode);
       }
+    }
+
+    // Deterministic gather: each node sums its elements' contributions in CSR order.
+    SPLAT_OMP(omp for schedule(static))
+    for (long long n = first; n < last; ++n) {
+      const std::size_t local = static_cast<std::size_t>(n - first);
+      const int begin = body.node_elem_offsets[local];
+      const int end = body.node_elem_offsets[local + 1];
+      Vec3 sum = Vec3::Zero();
+      for (int k = begin; k < end; ++k) {
+        const int entry = body.node_elem_entries[static_cast<std::size_t>(k)];
+        const std::size_t e = static_cast<std::size_t>(entry >> 3);
+        if (body.active[e]) sum += body.elem_force[e][static_cast<std::size_t>(entry & 7)];
+      }
+      nodes.f[static_cast<std::size_t>(n)] += sum;
     }
   }
 
@@ -555,23 +650,6 @@ FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
   for (const auto& list : erode)
     result.to_erode.insert(result.to_erode.end(), list.begin(), list.end());
   std::sort(result.to_erode.begin(), result.to_erode.end());
-
-  // Deterministic gather: each node sums its elements' contributions in CSR order.
-  const long long first = static_cast<long long>(body.node_begin);
-  const long long last = static_cast<long long>(body.node_end);
-  SPLAT_OMP(omp parallel for schedule(static) if (last - first >= min_parallel_nodes))
-  for (long long n = first; n < last; ++n) {
-    const std::size_t local = static_cast<std::size_t>(n - first);
-    const int begin = body.node_elem_offsets[local];
-    const int end = body.node_elem_offsets[local + 1];
-    Vec3 sum = Vec3::Zero();
-    for (int k = begin; k < end; ++k) {
-      const int entry = body.node_elem_entries[static_cast<std::size_t>(k)];
-      const std::size_t e = static_cast<std::size_t>(entry >> 3);
-      if (body.active[e]) sum += body.elem_force[e][static_cast<std::size_t>(entry & 7)];
-    }
-    nodes.f[static_cast<std::size_t>(n)] += sum;
-  }
   return result;
 }
 

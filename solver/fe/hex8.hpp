@@ -52,7 +52,6 @@
 // = sum_k Q^k . qdot^k (>= 0 for the viscous form).
 #pragma once
 
-#include <emmintrin.h>
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -60,6 +59,7 @@
 #include <cstdint>
 
 #include "solver/common/types.hpp"
+#include "solver/fe/simd_pair.hpp"
 
 namespace splat {
 
@@ -71,24 +71,7 @@ using Hex8Vectors = std::array<Vec3, 8>;
 // scalars: Eigen's 3-vectors mix scalar stores with 2-wide packet loads of
 // the same memory, and the store-forwarding stalls cost more than the
 // arithmetic of a whole element. Each kernel is a template on the number type
-// T: double for one element, Pair (two doubles in one SSE2 register) for two
-// elements at once, lane by lane the same operations, so the same results
-// to the bit.
-using Pair = double __attribute__((vector_size(16)));  // SSE2 register of two doubles
-
-inline double lane_max(double a, double b) {
-  return std::max(a, b);
-}
-inline Pair lane_max(Pair a, Pair b) {
-  return _mm_max_pd(b, a);  // a where b is NaN, as std::max(a, b)
-}
-inline double lane_sqrt(double a) {
-  return std::sqrt(a);
-}
-inline Pair lane_sqrt(Pair a) {
-  return _mm_sqrt_pd(a);
-}
-
+// (simd_pair.hpp).
 template <class T>
 struct Hex8FieldT {
   T u[3][8];

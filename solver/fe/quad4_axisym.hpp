@@ -45,6 +45,7 @@
 #include <cmath>
 
 #include "solver/common/types.hpp"
+#include "solver/fe/simd_pair.hpp"
 
 namespace splat {
 
@@ -55,26 +56,31 @@ using Quad4Vectors = std::array<Vec2, 4>;
 // u[0][a] = r and u[1][a] = z component at node a. Written in scalars:
 // building Eigen 2-vectors from two scalars made GCC store both and reload
 // them as one packet, a store-forwarding stall per vector.
-struct Quad4Field {
-  double u[2][4];
+template <class T>
+struct Quad4FieldT {
+  T u[2][4];
 };
+using Quad4Field = Quad4FieldT<double>;
 
-struct Quad4GradientCm {
-  double b[2][4];       // mean area gradient: b[0][a] = d/dr, b[1][a] = d/dz, 1/m
-  double area = 0.0;    // signed area, m^2 (<= 0: inverted)
-  double rbar = 0.0;    // mean nodal radius, m
-  double volume = 0.0;  // rbar A, m^3 per radian
+template <class T>
+struct Quad4GradientCmT {
+  T b[2][4];  // mean area gradient: b[0][a] = d/dr, b[1][a] = d/dz, 1/m
+  T area;     // signed area, m^2 (<= 0: inverted)
+  T rbar;     // mean nodal radius, m
+  T volume;   // rbar A, m^3 per radian
 };
+using Quad4GradientCm = Quad4GradientCmT<double>;
 
-inline Quad4GradientCm quad4_axisym_gradient_cm(const Quad4Field& x) {
-  const double r0 = x.u[0][0], r1 = x.u[0][1], r2 = x.u[0][2], r3 = x.u[0][3];
-  const double z0 = x.u[1][0], z1 = x.u[1][1], z2 = x.u[1][2], z3 = x.u[1][3];
-  Quad4GradientCm g;
-  const double two_a = (r0 - r2) * (z1 - z3) + (r1 - r3) * (z2 - z0);
+template <class T>
+inline Quad4GradientCmT<T> quad4_axisym_gradient_cm(const Quad4FieldT<T>& x) {
+  const T r0 = x.u[0][0], r1 = x.u[0][1], r2 = x.u[0][2], r3 = x.u[0][3];
+  const T z0 = x.u[1][0], z1 = x.u[1][1], z2 = x.u[1][2], z3 = x.u[1][3];
+  Quad4GradientCmT<T> g;
+  const T two_a = (r0 - r2) * (z1 - z3) + (r1 - r3) * (z2 - z0);
   g.area = 0.5 * two_a;
   g.rbar = 0.25 * ((r0 + r1) + (r2 + r3));
   g.volume = g.rbar * g.area;
-  const double inv = two_a != 0.0 ? 1.0 / two_a : 0.0;
+  const T inv = lane_if_nonzero(two_a, 1.0 / two_a);
   g.b[0][0] = inv * (z1 - z3);
   g.b[1][0] = inv * (r3 - r1);
   g.b[0][1] = inv * (z2 - z0);
@@ -86,71 +92,90 @@ inline Quad4GradientCm quad4_axisym_gradient_cm(const Quad4Field& x) {
   return g;
 }
 
-// 3x3 velocity gradient, components (r, z, theta), 1/s.
-inline Mat3 quad4_axisym_velocity_gradient_cm(const Quad4Field& v, const Quad4GradientCm& g) {
-  double L2[2][2];
+// In-plane velocity gradient L2[i][j] and hoop rate L_thth, 1/s.
+template <class T>
+inline void quad4_axisym_velocity_gradient_cm(const Quad4FieldT<T>& v, const Quad4GradientCmT<T>& g,
+                                              T L2[2][2], T& L_thth) {
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
-      double sum = v.u[i][0] * g.b[j][0];
+      T sum = v.u[i][0] * g.b[j][0];
       for (int a = 1; a < 4; ++a) sum += v.u[i][a] * g.b[j][a];
       L2[i][j] = sum;
     }
   }
-  const double vr = ((v.u[0][0] + v.u[0][1]) + v.u[0][2]) + v.u[0][3];
+  const T vr = ((v.u[0][0] + v.u[0][1]) + v.u[0][2]) + v.u[0][3];
+  L_thth = lane_if_positive(g.rbar, 0.25 * vr / g.rbar);
+}
+
+// 3x3 velocity gradient, components (r, z, theta), 1/s.
+inline Mat3 quad4_axisym_velocity_gradient_cm(const Quad4Field& v, const Quad4GradientCm& g) {
+  double L2[2][2], L_thth;
+  quad4_axisym_velocity_gradient_cm(v, g, L2, L_thth);
   Mat3 L;
   L << L2[0][0], L2[0][1], 0.0,  //
       L2[1][0], L2[1][1], 0.0,   //
-      0.0, 0.0, g.rbar > 0.0 ? 0.25 * vr / g.rbar : 0.0;
+      0.0, 0.0, L_thth;
   return L;
 }
 
-// Internal forces per radian from the (r, z, theta) Cauchy stress (overwrites f), N.
+// Internal forces per radian from the (r, z, theta) Cauchy stress components
+// s_rr, s_rz, s_zr, s_zz, s_thth (overwrites f), N.
+template <class T>
+inline void quad4_axisym_stress_forces_cm(T s_rr, T s_rz, T s_zr, T s_zz, T s_thth,
+                                          const Quad4GradientCmT<T>& g, Quad4FieldT<T>& f) {
+  const T V = g.volume;
+  const T hoop = 0.25 * s_thth * g.area;
+  for (int a = 0; a < 4; ++a) {
+    const T br = g.b[0][a], bz = g.b[1][a];
+    f.u[0][a] = -V * (s_rr * br + s_rz * bz) - hoop;
+    f.u[1][a] = -V * (s_zr * br + s_zz * bz);
+  }
+}
 inline void quad4_axisym_stress_forces_cm(const Mat3& sigma, const Quad4GradientCm& g,
                                           Quad4Field& f) {
-  const double V = g.volume;
-  const double hoop = 0.25 * sigma(2, 2) * g.area;
-  for (int a = 0; a < 4; ++a) {
-    const double br = g.b[0][a], bz = g.b[1][a];
-    f.u[0][a] = -V * (sigma(0, 0) * br + sigma(0, 1) * bz) - hoop;
-    f.u[1][a] = -V * (sigma(1, 0) * br + sigma(1, 1) * bz);
-  }
+  quad4_axisym_stress_forces_cm(sigma(0, 0), sigma(0, 1), sigma(1, 0), sigma(1, 1), sigma(2, 2), g,
+                                f);
 }
 
 // L_c = A / max(|x_2 - x_0|, |x_3 - x_1|), m.
-inline double quad4_axisym_characteristic_length_cm(const Quad4Field& x, double area) {
-  const double dr0 = x.u[0][2] - x.u[0][0], dz0 = x.u[1][2] - x.u[1][0];
-  const double dr1 = x.u[0][3] - x.u[0][1], dz1 = x.u[1][3] - x.u[1][1];
-  const double d2 = std::max(dr0 * dr0 + dz0 * dz0, dr1 * dr1 + dz1 * dz1);
-  return d2 > 0.0 ? area / std::sqrt(d2) : 0.0;
+template <class T>
+inline T quad4_axisym_characteristic_length_cm(const Quad4FieldT<T>& x, T area) {
+  const T dr0 = x.u[0][2] - x.u[0][0], dz0 = x.u[1][2] - x.u[1][0];
+  const T dr1 = x.u[0][3] - x.u[0][1], dz1 = x.u[1][3] - x.u[1][1];
+  const T d2 = lane_max(dr0 * dr0 + dz0 * dz0, dr1 * dr1 + dz1 * dz1);
+  return lane_if_positive(d2, area / lane_sqrt(d2));
 }
 
 // gamma_a of the single hourglass mode, -.
-inline std::array<double, 4> quad4_axisym_hourglass_vector_cm(const Quad4Field& x,
-                                                              const Quad4GradientCm& g) {
+template <class T>
+inline std::array<T, 4> quad4_axisym_hourglass_vector_cm(const Quad4FieldT<T>& x,
+                                                         const Quad4GradientCmT<T>& g) {
   constexpr double base[4] = {1.0, -1.0, 1.0, -1.0};
-  double h[2];  // sum_b Gamma_b x_b
+  T h[2];  // sum_b Gamma_b x_b
   for (int i = 0; i < 2; ++i) h[i] = (x.u[i][0] - x.u[i][1]) + (x.u[i][2] - x.u[i][3]);
-  std::array<double, 4> gamma;
+  std::array<T, 4> gamma;
   for (int a = 0; a < 4; ++a) gamma[a] = base[a] - (h[0] * g.b[0][a] + h[1] * g.b[1][a]);
   return gamma;
 }
 
 // qdot = sum_a gamma_a v_a, m/s.
-inline void quad4_axisym_hourglass_rate_cm(const std::array<double, 4>& gamma, const Quad4Field& v,
-                                           double qdot[2]) {
+template <class T>
+inline void quad4_axisym_hourglass_rate_cm(const std::array<T, 4>& gamma, const Quad4FieldT<T>& v,
+                                           T qdot[2]) {
   for (int i = 0; i < 2; ++i) {
-    double sum = 0.0;
+    T sum = T{};
     for (int a = 0; a < 4; ++a) sum += gamma[a] * v.u[i][a];
     qdot[i] = sum;
   }
 }
 
 // Adds the viscous hourglass forces; returns a_h |qdot|^2 >= 0, W per radian.
-inline double quad4_axisym_hourglass_viscous_cm(const std::array<double, 4>& gamma,
-                                                const Quad4Field& v, double a_h, Quad4Field& f) {
-  double qdot[2];
+template <class T>
+inline T quad4_axisym_hourglass_viscous_cm(const std::array<T, 4>& gamma, const Quad4FieldT<T>& v,
+                                           T a_h, Quad4FieldT<T>& f) {
+  T qdot[2];
   quad4_axisym_hourglass_rate_cm(gamma, v, qdot);
-  const double Q[2] = {a_h * qdot[0], a_h * qdot[1]};
+  const T Q[2] = {a_h * qdot[0], a_h * qdot[1]};
   for (int i = 0; i < 2; ++i)
     for (int a = 0; a < 4; ++a) f.u[i][a] -= gamma[a] * Q[i];
   return a_h * (qdot[0] * qdot[0] + qdot[1] * qdot[1]);
