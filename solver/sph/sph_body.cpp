@@ -322,6 +322,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       b.active[i] = 0;
       b.VP[i].setZero();
       result.deactivated.push_back(static_cast<int>(i));
+      result.deactivated_energy += b.volume0[i] * b.state[i].e;
       b.update_pending = true;
     }
   }

@@ -63,7 +63,7 @@
 // deactivate_failed a particle at D_max stops carrying stress and is dropped
 // from all neighbour lists at the next reference update (forced at the next
 // call); it then flies freely and its energy leaves the internal energy (it is
-// reported in deactivated_energy).
+// reported in SphStepResult::deactivated_energy).
 #pragma once
 
 #include <cstdint>
@@ -141,10 +141,11 @@ struct SphStepResult {
   double viscosity_power = 0.0;  // -sum f_visc . v >= 0, W
   int max_return_iterations = 0;
   bool return_failed = false;
-  long long inverted = 0;          // active particles with det F <= 0 (carry no stress)
-  double max_deformation = 0.0;    // max ||F - I||_F after any update, -
-  bool reference_updated = false;  // the body was re-referenced in this call
-  std::vector<int> deactivated;    // particles (local) deactivated in this call
+  long long inverted = 0;           // active particles with det F <= 0 (carry no stress)
+  double max_deformation = 0.0;     // max ||F - I||_F after any update, -
+  bool reference_updated = false;   // the body was re-referenced in this call
+  std::vector<int> deactivated;     // particles (local) deactivated in this call
+  double deactivated_energy = 0.0;  // V0 e of those particles, leaving the internal energy, J
 };
 
 // Builds a body from a particle cloud and appends its particles to `nodes`:

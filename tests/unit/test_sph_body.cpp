@@ -372,6 +372,7 @@ TEST(SphDamage, FailedParticleIsDeactivatedOnlyWhenAsked) {
       continue;
     }
     ASSERT_EQ(r.deactivated, std::vector<int>{failed});
+    EXPECT_EQ(r.deactivated_energy, body.volume0[failed] * body.state[failed].e);
     EXPECT_EQ(body.VP[failed].norm(), 0.0);
     const SphStepResult next = sph_internal_forces(body, nodes, 1e-9);
     EXPECT_TRUE(next.reference_updated);
