@@ -15,11 +15,17 @@ using CommandTable = std::vector<std::pair<CLI::App*, std::function<int()>>>;
 void register_materials(CLI::App& app, CommandTable& commands);
 void register_mat_point(CLI::App& app, CommandTable& commands);
 void register_run(CLI::App& app, CommandTable& commands);
+void register_sweep(CLI::App& app, CommandTable& commands);
+void register_windows(CLI::App& app, CommandTable& commands);
+void register_regress(CLI::App& app, CommandTable& commands);
 
 inline void register_all(CLI::App& app, CommandTable& commands) {
   register_materials(app, commands);
   register_mat_point(app, commands);
   register_run(app, commands);
+  register_sweep(app, commands);
+  register_windows(app, commands);
+  register_regress(app, commands);
 }
 
 }  // namespace splat::app

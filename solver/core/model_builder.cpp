@@ -300,6 +300,57 @@ Model build_model(const Scene& scene) {
     }
   }
 
+  // Contact surfaces: every boundary face of a body except those on the
+  // symmetry axis (axisymmetric) or on one of its symmetry planes.
+  std::vector<std::uint32_t> excluded(scene.bodies.size(),
+                                      model.axisymmetric ? boundary_x_min : 0u);
+  for (const BoundarySpec& bc : scene.boundaries) {
+    if (bc.type != BoundaryType::symmetry) continue;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (scene.bodies[b].name == bc.body) excluded[b] |= bc.on;
+    }
+  }
+  const DetectionKind kind =
+      model.axisymmetric ? DetectionKind::node_on_segment : DetectionKind::node_on_quad;
+  auto surface_of = [&](std::size_t b) {
+    std::vector<std::array<int, 4>> faces;
+    for (std::size_t k = 0; k < body_faces[b].size(); ++k) {
+      if (!(body_face_tags[b][k] & excluded[b])) faces.push_back(body_faces[b][k]);
+    }
+    return make_contact_surface(kind, std::move(faces));
+  };
+  for (std::size_t ci = 0; ci < scene.interactions.size(); ++ci) {
+    const InteractionSpec& it = scene.interactions[ci];
+    if (it.type != InteractionType::contact) continue;
+    const std::string ptr = "/interactions/" + std::to_string(ci);
+    const std::size_t mb = body_index(it.master, ptr + "/master");
+    const std::size_t sb = body_index(it.slave, ptr + "/slave");
+    if (mb == sb) fail(ptr + "/slave", "must differ from master");
+    ContactSettings cs;
+    cs.method = it.method;
+    cs.friction = it.friction;
+    cs.solver.kind = it.solver;
+    cs.two_pass = it.two_pass;
+    ContactSurface master = surface_of(mb);
+    if (it.method == ContactMethod::penalty) {
+      cs.penalty_stiffness = it.penalty_stiffness;
+      if (!(cs.penalty_stiffness > 0.0)) {
+        // 0.1 K / h: a tenth of the stiffness of one element layer of the
+        // softer body (the usual explicit-code default, safe for the time step).
+        double h = std::numeric_limits<double>::infinity();
+        for (std::size_t f = 0; f < master.faces.size(); ++f) {
+          h = std::min(h, face_size(master, static_cast<int>(f), model.nodes.x0));
+        }
+        const double K = std::min(model.bodies[mb].constants.K, model.bodies[sb].constants.K);
+        if (!std::isfinite(h) || !(h > 0.0)) fail(ptr + "/master", "the body has no contact faces");
+        cs.penalty_stiffness = 0.1 * K / h;
+      }
+    }
+    model.contacts.emplace_back(it.master, it.slave, std::move(master), surface_of(sb), cs,
+                                model.axisymmetric, n);
+    model.contacts.back().attach_bodies(model.bodies[mb], model.bodies[sb]);
+  }
+
   for (std::size_t wi = 0; wi < scene.interactions.size(); ++wi) {
     const InteractionSpec& it = scene.interactions[wi];
     const std::string ptr = "/interactions/" + std::to_string(wi);

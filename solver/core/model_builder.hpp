@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/contact/contact_interface.hpp"
 #include "solver/fe/fe_body.hpp"
 #include "solver/scene/scene.hpp"
 
@@ -41,6 +42,7 @@ struct Model {
   std::vector<Vec3> constraint_value;         // per node: prescribed velocity, m/s
   std::vector<RigidWall> walls;
   std::vector<AbsorbingFace> absorbing;
+  std::vector<ContactInterface> contacts;  // scene order of the contact interactions
 };
 
 // Throws InputError (solver/input/schema.hpp) naming the scene field when the

@@ -61,6 +61,7 @@ nlohmann::json to_json(const RunSummary& s) {
       {"hourglass", e.hourglass},         {"artificial_viscosity", e.artificial_viscosity},
       {"absorbed", e.absorbed},           {"eroded", e.eroded},
       {"wall_work", e.wall_work},         {"external_work", e.external_work},
+      {"contact_work", e.contact_work},   {"contact_stored", e.contact_stored},
       {"balance_error", e.balance_error}};
   j["bodies"] = nlohmann::json::array();
   for (const BodySummary& b : s.bodies) {
@@ -75,6 +76,23 @@ nlohmann::json to_json(const RunSummary& s) {
                            {"max_temperature", b.max_temperature},
                            {"extent_min", vec(b.extent_min)},
                            {"extent_max", vec(b.extent_max)}});
+  }
+  j["interfaces"] = nlohmann::json::array();
+  for (const InterfaceSummary& c : s.interfaces) {
+    j["interfaces"].push_back({{"master", c.master},
+                               {"slave", c.slave},
+                               {"method", c.method},
+                               {"friction", c.friction},
+                               {"work", c.work},
+                               {"stored", c.stored},
+                               {"dissipated", c.dissipated},
+                               {"pairs_in_contact", c.pairs_in_contact},
+                               {"max_pairs_in_contact", c.max_pairs_in_contact},
+                               {"nodes_ever_in_contact", c.nodes_ever_in_contact},
+                               {"max_solver_iterations", c.max_solver_iterations},
+                               {"max_solver_residual", c.max_solver_residual},
+                               {"unconverged_solves", c.unconverged_solves},
+                               {"max_penetration", c.max_penetration}});
   }
   if (s.two_mass) {
     const TwoMassSummary& t = *s.two_mass;

@@ -35,7 +35,9 @@ struct EnergyBudget {
   double eroded = 0.0;                // kinetic + internal energy of eroded elements
   double wall_work = 0.0;             // work of rigid walls on the bodies (<= 0)
   double external_work = 0.0;         // work of prescribed velocities and other constraints
-  double balance_error = 0.0;         // (total now - initial - external - wall) / initial, -
+  double contact_work = 0.0;    // work of contact forces on the bodies (<= 0 without adhesion)
+  double contact_stored = 0.0;  // energy in penalty contact springs now (part of -contact_work)
+  double balance_error = 0.0;   // (total now - initial - external - wall - contact) / initial, -
 };
 
 struct BodySummary {
@@ -50,6 +52,23 @@ struct BodySummary {
   double max_temperature = 0.0;     // K
   Vec3 extent_min = Vec3::Zero();   // m
   Vec3 extent_max = Vec3::Zero();   // m
+};
+
+// One contact interface (solver/contact/contact_interface.hpp).
+struct InterfaceSummary {
+  std::string master, slave;
+  std::string method;  // lagrange | penalty
+  double friction = 0.0;
+  double work = 0.0;                   // J, work of the contact forces on the bodies
+  double stored = 0.0;                 // J, penalty springs at the end
+  double dissipated = 0.0;             // J, -work - stored
+  long long pairs_in_contact = 0;      // at the end
+  long long max_pairs_in_contact = 0;  // over the run
+  long long nodes_ever_in_contact = 0;
+  int max_solver_iterations = 0;
+  double max_solver_residual = 0.0;  // m/s
+  long long unconverged_solves = 0;
+  double max_penetration = 0.0;  // m
 };
 
 // Figures of a two-mass run (solver/two_mass/two_mass_model.hpp). Velocities
@@ -80,6 +99,7 @@ struct RunSummary {
   int threads = 1;
   EnergyBudget energy;
   std::vector<BodySummary> bodies;
+  std::vector<InterfaceSummary> interfaces;
   std::optional<TwoMassSummary> two_mass;  // two-mass scenes only
   std::string hdf5_path;                   // empty when no file was written
   std::string xdmf_path;

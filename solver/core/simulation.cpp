@@ -75,6 +75,7 @@ void Simulation::Impl::update_velocities(bool first) {
   }
   energy.external_work += ext_work * scale();
   energy.wall_work += wall_work * scale();
+  for (ContactInterface& c : model.contacts) c.book_penalty_work(n, dt_v);
 }
 
 // Stage 2.
@@ -83,6 +84,15 @@ void Simulation::Impl::predict_positions() {
   const std::size_t count = n.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < count; ++i) n.x[i] += dt_half * n.v[i];
+}
+
+// Stage 3: Lagrange-multiplier contact on the predicted positions.
+void Simulation::Impl::contact_constraints() {
+  for (ContactInterface& c : model.contacts) {
+    if (c.settings().method == ContactMethod::lagrange) {
+      c.lagrange_step(model.nodes, model.constraint_mask, dt_half);
+    }
+  }
 }
 
 // Stage 4. Returns false when the run must stop (reason in s).
@@ -117,10 +127,16 @@ bool Simulation::Impl::internal_forces(RunSummary& s) {
   return true;
 }
 
-// Stage 5: viscous absorbing boundaries, f = -A (rho c_p v_n n + rho c_s v_t)
-// on each node's share A of a boundary face (Lysmer & Kuhlemeyer 1969).
+// Stage 5: penalty contact forces, then viscous absorbing boundaries,
+// f = -A (rho c_p v_n n + rho c_s v_t) on each node's share A of a boundary
+// face (Lysmer & Kuhlemeyer 1969).
 void Simulation::Impl::boundary_forces() {
   NodeSet& n = model.nodes;
+  for (ContactInterface& c : model.contacts) {
+    if (c.settings().method == ContactMethod::penalty) {
+      c.penalty_forces(n, model.constraint_mask, dt_half);
+    }
+  }
   double power = 0.0;
   for (const AbsorbingFace& face : model.absorbing) {
     Vec3 normal;
@@ -169,11 +185,18 @@ void Simulation::Impl::compute_energies() {
   energy.kinetic = kinetic * scale();
   energy.internal = internal * scale();
   energy.plastic_work = plastic * scale();
+  energy.contact_work = 0.0;
+  energy.contact_stored = 0.0;
+  for (const ContactInterface& c : model.contacts) {
+    energy.contact_work += c.stats().work;
+    energy.contact_stored += c.stats().stored;
+  }
   const double total = energy.kinetic + energy.internal + energy.hourglass +
                        energy.artificial_viscosity + energy.absorbed + energy.eroded;
   const double reference = std::max(energy.initial_total, 1e-300);
-  energy.balance_error =
-      (total - energy.initial_total - energy.external_work - energy.wall_work) / reference;
+  energy.balance_error = (total - energy.initial_total - energy.external_work - energy.wall_work -
+                          energy.contact_work) /
+                         reference;
 }
 
 std::optional<std::pair<RunOutcome, std::string>> Simulation::Impl::checks(
@@ -255,6 +278,7 @@ RunSummary Simulation::run() {
       if (s.time + s.dt_half > end_time) s.dt_half = end_time - s.time;
       s.update_velocities(s.step == 0);
       s.predict_positions();
+      s.contact_constraints();
       if (!s.internal_forces(summary)) {
         stopped = true;
       } else {
@@ -351,6 +375,26 @@ void Simulation::Impl::fill_summary(RunSummary& s) const {
       bs.max_temperature = std::max(bs.max_temperature, b.state[e].T);
     }
     s.bodies.push_back(bs);
+  }
+  s.interfaces.clear();
+  for (const ContactInterface& c : model.contacts) {
+    const ContactStats& st = c.stats();
+    InterfaceSummary is;
+    is.master = c.master_body();
+    is.slave = c.slave_body();
+    is.method = c.settings().method == ContactMethod::lagrange ? "lagrange" : "penalty";
+    is.friction = c.settings().friction;
+    is.work = st.work;
+    is.stored = st.stored;
+    is.dissipated = -st.work - st.stored;
+    is.pairs_in_contact = st.in_contact;
+    is.max_pairs_in_contact = st.max_in_contact;
+    is.nodes_ever_in_contact = st.ever_in_contact;
+    is.max_solver_iterations = st.max_iterations;
+    is.max_solver_residual = st.max_residual;
+    is.unconverged_solves = st.unconverged;
+    is.max_penetration = st.max_penetration;
+    s.interfaces.push_back(is);
   }
   s.hdf5_path = h5_path.empty() ? std::string() : h5_path.string();
   s.xdmf_path = h5_path.empty() ? std::string()

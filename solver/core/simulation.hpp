@@ -5,10 +5,11 @@
 //   1. update       a_n = f_n / m; v_{n+1/2} = v_{n-1/2} + dt_n a_n; velocity
 //                   constraints (fixed, symmetry, axis, prescribed); rigid walls
 //   2. predict      x_{n+1} = x_n + dt_{n+1/2} v_{n+1/2}
-//   3. contact      (contact and adhesion arrive with a later issue)
+//   3. contact      Lagrange-multiplier contact on the predicted positions:
+//                   v_{n+1/2} and x_{n+1} corrected so x_{n+1} does not penetrate
 //   4. internal     element loop: velocity gradient, material update, bulk
 //      forces       viscosity, hourglass control, nodal forces, CFL bound
-//   5. boundary     absorbing-boundary forces
+//   5. boundary     penalty contact forces, absorbing-boundary forces
 //      forces
 //   6. diagnostics  energies, histories, snapshots, stop checks; next dt
 #pragma once

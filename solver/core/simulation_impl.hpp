@@ -41,6 +41,7 @@ struct Simulation::Impl {
 
   void update_velocities(bool first);
   void predict_positions();
+  void contact_constraints();
   bool internal_forces(RunSummary& s);
   void boundary_forces();
   void compute_energies();

@@ -32,10 +32,17 @@ void Simulation::Impl::open_output() {
                                                               {"eroded", "J"},
                                                               {"wall_work", "J"},
                                                               {"external_work", "J"},
+                                                              {"contact_work", "J"},
+                                                              {"contact_stored", "J"},
                                                               {"balance_error", "-"}};
   for (const FeBody& body : model.bodies) {
     for (const char* c : {"_vx", "_vy", "_vz"}) columns.emplace_back(body.name + c, "m/s");
     columns.emplace_back(body.name + "_kinetic", "J");
+  }
+  for (std::size_t c = 0; c < model.contacts.size(); ++c) {
+    const std::string prefix = "contact" + std::to_string(c) + "_";
+    columns.emplace_back(prefix + "pairs_in_contact", "-");
+    columns.emplace_back(prefix + "work", "J");
   }
   file = std::make_unique<ResultFile>(h5_path, std::move(topo), std::move(columns));
   file->set_attribute("solver_version", std::string(version()));
@@ -63,6 +70,8 @@ void Simulation::Impl::write_history() {
                              energy.eroded,
                              energy.wall_work,
                              energy.external_work,
+                             energy.contact_work,
+                             energy.contact_stored,
                              energy.balance_error};
   const NodeSet& n = model.nodes;
   for (const FeBody& body : model.bodies) {
@@ -75,6 +84,9 @@ void Simulation::Impl::write_history() {
     }
     const Vec3 vc = centroid_velocity(model, momentum, mass);
     row.insert(row.end(), {vc.x(), vc.y(), vc.z(), kinetic * scale()});
+  }
+  for (const ContactInterface& c : model.contacts) {
+    row.insert(row.end(), {static_cast<double>(c.stats().in_contact), c.stats().work});
   }
   file->append_history(row);
 }

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <type_traits>
 
 #include "solver/fe/bulk_viscosity.hpp"
 #include "solver/fe/hex8.hpp"
@@ -136,6 +135,38 @@ int global_node(const std::string& name, std::size_t e, int local, std::size_t n
                               " has non-positive volume " + std::to_string(volume));
 }
 
+// hughes_winget_rotation and rotate_symmetric (fe_body.hpp), same arithmetic,
+// in scalars for the element loop: Eigen's comma initialiser and 3x3 products
+// mixed scalar stores with packet loads of the same memory here
+// (store-forwarding stalls). (w21, w02, w10) are W(2,1), W(0,2), W(1,0).
+inline void hughes_winget_rotation_cm(double w21, double w02, double w10, double dt,
+                                      double Q[3][3]) {
+  const double h = 0.5 * dt;
+  const double a0 = h * w21, a1 = h * w02, a2 = h * w10;
+  const double a_sq = a0 * a0 + a1 * a1 + a2 * a2;
+  const double c = 2.0 / (1.0 + a_sq);
+  const double d = 1.0 - c * a_sq;
+  Q[0][0] = d + c * a0 * a0, Q[0][1] = c * (a0 * a1 - a2), Q[0][2] = c * (a0 * a2 + a1);
+  Q[1][0] = c * (a0 * a1 + a2), Q[1][1] = d + c * a1 * a1, Q[1][2] = c * (a1 * a2 - a0);
+  Q[2][0] = c * (a0 * a2 - a1), Q[2][1] = c * (a1 * a2 + a0), Q[2][2] = d + c * a2 * a2;
+}
+
+// s <- Q s Q^T for a symmetric s (the six distinct entries, exactly symmetric).
+inline void rotate_symmetric_cm(const double Q[3][3], Mat3& s) {
+  double S[3][3], T[3][3];
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) S[i][j] = s(i, j);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) T[i][k] = Q[i][0] * S[0][k] + Q[i][1] * S[1][k] + Q[i][2] * S[2][k];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) {
+      const double r = T[i][0] * Q[j][0] + T[i][1] * Q[j][1] + T[i][2] * Q[j][2];
+      s(i, j) = r;
+      s(j, i) = r;
+    }
+  }
+}
+
 // Result of the material part of one element step.
 struct MaterialStep {
   Mat3 sigma;            // Cauchy stress minus bulk viscosity, Pa
@@ -156,11 +187,14 @@ inline MaterialStep material_step(FeBody& body, std::size_t e, const Mat3& L, do
   PointState& st = body.state[e];
   double trD = 0.0;
   if (dt > 0.0) {
+    // Jaumann rotation of the deviator (jaumann_rotate's rotation, closed
+    // form), in scalars: see hughes_winget_rotation_cm.
+    double Q[3][3];
+    hughes_winget_rotation_cm(0.5 * (L(2, 1) - L(1, 2)), 0.5 * (L(0, 2) - L(2, 0)),
+                              0.5 * (L(1, 0) - L(0, 1)), dt, Q);
+    rotate_symmetric_cm(Q, st.s);
+    ms.R << Q[0][0], Q[0][1], Q[0][2], Q[1][0], Q[1][1], Q[1][2], Q[2][0], Q[2][1], Q[2][2];
     const Mat3 D = 0.5 * (L + L.transpose());
-    const Mat3 W = 0.5 * (L - L.transpose());
-    // Jaumann rotation of the deviator (jaumann_rotate's rotation, closed form).
-    ms.R = hughes_winget_rotation(W, dt);
-    st.s = rotate_symmetric(ms.R, st.s);
     const PointUpdateResult r = update_point(body.material, body.constants, body.switches, st,
                                              dt * D, V / body.volume0[e], dt, L_c);
     sums.max_iterations = std::max(sums.max_iterations, r.iterations);
@@ -197,24 +231,15 @@ inline bool to_be_eroded(const FeBody& body, std::size_t e, double V, double dt_
   return s.erosion_min_time_step > 0.0 && dt_e < s.erosion_min_time_step;
 }
 
-// Books an element's step: an element flagged for erosion exerts no force and
-// sets no time-step bound (it is removed before the next step).
-template <class Forces>
+// Books an element's step whose forces the caller has written to
+// elem_force[e]: an element flagged for erosion exerts no force (they are
+// zeroed) and sets no time-step bound (it is removed before the next step).
 inline void finish_element(FeBody& body, std::size_t e, double V, const MaterialStep& ms,
-                           double hourglass_power, const Forces& f, BlockSums& sums,
-                           std::vector<int>& erode) {
-  std::array<Vec3, 8>& out = body.elem_force[e];
+                           double hourglass_power, BlockSums& sums, std::vector<int>& erode) {
   if (to_be_eroded(body, e, V, ms.dt_e, sums)) {
-    out.fill(Vec3::Zero());
+    body.elem_force[e].fill(Vec3::Zero());
     erode.push_back(static_cast<int>(e));
     return;
-  }
-  for (std::size_t a = 0; a < f.size(); ++a) {
-    if constexpr (std::is_same_v<Forces, Quad4Vectors>) {
-      out[a] = Vec3(f[a].x(), f[a].y(), 0.0);
-    } else {
-      out[a] = f[a];
-    }
   }
   sums.dt_min = std::min(sums.dt_min, ms.dt_e);
   sums.hourglass_power += hourglass_power;
@@ -231,29 +256,34 @@ inline void inverted_element(FeBody& body, std::size_t e, BlockSums& sums,
 void hex_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, BlockSums& sums,
                  std::vector<int>& erode) {
   const std::array<int, 8>& cn = body.conn[e];
-  Hex8Vectors x, v;
+  Hex8Field x, v;
   for (int a = 0; a < 8; ++a) {
-    x[a] = nodes.x[cn[a]];
-    v[a] = nodes.v[cn[a]];
+    const Vec3& xa = nodes.x[cn[a]];
+    const Vec3& va = nodes.v[cn[a]];
+    for (int i = 0; i < 3; ++i) {
+      x.u[i][a] = xa[i];
+      v.u[i][a] = va[i];
+    }
   }
-  const Hex8Modes xm = hex8_modes(x);
-  const Hex8Geometry g = hex8_geometry(xm);
+  const Hex8Field xm = hex8_modes_cm(x);
+  const Hex8GeometryCm g = hex8_geometry_cm(xm);
   const double V = g.volume;
   body.volume[e] = V;
   if (!(V > 0.0)) return inverted_element(body, e, sums, erode);
-  const double L_c = hex8_characteristic_length(x, V);
+  const double L_c = hex8_characteristic_length_cm(x, V);
   body.char_length[e] = L_c;
-  const Hex8Modes w = hex8_modes(v);
+  const Hex8Field w = hex8_modes_cm(v);
 
   Mat3 L = Mat3::Zero();
   if (dt > 0.0) {
-    Hex8Modes mid;  // x_{n+1/2} = x - dt/2 v, mode by mode
-    for (int u = 0; u < 8; ++u) mid.c[u] = xm.c[u] - (0.5 * dt) * w.c[u];
-    L = hex8_velocity_gradient(w, hex8_geometry(mid));
+    Hex8Field mid;  // x_{n+1/2} = x - dt/2 v, mode by mode
+    for (int i = 0; i < 3; ++i)
+      for (int u = 0; u < 8; ++u) mid.u[i][u] = xm.u[i][u] - (0.5 * dt) * w.u[i][u];
+    L = hex8_velocity_gradient_cm(w, hex8_geometry_cm(mid));
   }
   const MaterialStep ms = material_step(body, e, L, dt, V, L_c, sums);
 
-  const std::array<Vec3, 4> qdot = hex8_hourglass_rates(w, xm, hex8_velocity_gradient(w, g));
+  const std::array<Vec3, 4> qdot = hex8_hourglass_rates_cm(w, xm, hex8_velocity_gradient_cm(w, g));
   const double c_hg = body.settings.hourglass_coefficient;
   double hg_power = 0.0;
   std::array<Vec3, 4> Q;
@@ -267,50 +297,151 @@ void hex_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, B
     const double a_h = hex8_viscous_hourglass_coefficient(c_hg, rho, ms.c, V);
     hg_power = hex8_hourglass_viscous(qdot, a_h, Q);
   }
-  finish_element(body, e, V, ms, hg_power, hex8_forces(ms.sigma, g, xm, Q), sums, erode);
+  const Hex8Field f = hex8_forces_cm(ms.sigma, g, xm, Q);
+  std::array<Vec3, 8>& out = body.elem_force[e];
+  for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], f.u[2][a]);
+  finish_element(body, e, V, ms, hg_power, sums, erode);
+}
+
+// Two neighbouring elements at once, lane l = element e + l: the geometry,
+// gradient and force kernels run on Pair (hex8.hpp), two elements per SSE2
+// instruction, lane by lane the arithmetic of hex_element, so the results are
+// the same to the bit; the material update and hourglass forces run element by
+// element, and the sums are booked in element order. Falls back to
+// hex_element for each element when either is inverted.
+void hex_element_pair(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, BlockSums& sums,
+                      std::vector<int>& erode) {
+  const std::array<int, 8>& c0 = body.conn[e];
+  const std::array<int, 8>& c1 = body.conn[e + 1];
+  Hex8FieldT<Pair> x, v;
+  for (int a = 0; a < 8; ++a) {
+    const Vec3& x0 = nodes.x[c0[a]];
+    const Vec3& x1 = nodes.x[c1[a]];
+    const Vec3& v0 = nodes.v[c0[a]];
+    const Vec3& v1 = nodes.v[c1[a]];
+    for (int i = 0; i < 3; ++i) {
+      x.u[i][a] = _mm_set_pd(x1[i], x0[i]);
+      v.u[i][a] = _mm_set_pd(v1[i], v0[i]);
+    }
+  }
+  const Hex8FieldT<Pair> xm = hex8_modes_cm(x);
+  const Hex8GeometryCmT<Pair> g = hex8_geometry_cm(xm);
+  const double V[2] = {g.volume[0], g.volume[1]};
+  if (!(V[0] > 0.0) || !(V[1] > 0.0)) {
+    hex_element(body, nodes, e, dt, sums, erode);
+    hex_element(body, nodes, e + 1, dt, sums, erode);
+    return;
+  }
+  const Pair max_area2 = hex8_max_face_area2_cm(x);
+  const Pair lc = 2.0 * g.volume / lane_sqrt(max_area2);
+  double L_c[2];
+  for (int l = 0; l < 2; ++l) {
+    L_c[l] = max_area2[l] > 0.0 ? lc[l] : 0.0;
+    body.volume[e + l] = V[l];
+    body.char_length[e + l] = L_c[l];
+  }
+  const Hex8FieldT<Pair> w = hex8_modes_cm(v);
+
+  Pair L[3][3];
+  if (dt > 0.0) {
+    Hex8FieldT<Pair> mid;  // x_{n+1/2} = x - dt/2 v, mode by mode
+    for (int i = 0; i < 3; ++i)
+      for (int u = 0; u < 8; ++u) mid.u[i][u] = xm.u[i][u] - (0.5 * dt) * w.u[i][u];
+    hex8_velocity_gradient_cm(w, hex8_geometry_cm(mid), L);
+  } else {
+    for (auto& row : L)
+      for (Pair& c : row) c = Pair{};
+  }
+  MaterialStep ms[2];
+  for (int l = 0; l < 2; ++l) {
+    Mat3 Ll;
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) Ll(i, j) = L[i][j][l];
+    ms[l] = material_step(body, e + l, Ll, dt, V[l], L_c[l], sums);
+  }
+
+  Pair L_end[3][3], qdot[4][3];
+  hex8_velocity_gradient_cm(w, g, L_end);
+  hex8_hourglass_rates_cm(w, xm, L_end, qdot);
+  const double c_hg = body.settings.hourglass_coefficient;
+  double hg_power[2];
+  std::array<Vec3, 4> Q[2];
+  for (int l = 0; l < 2; ++l) {
+    const std::size_t el = e + static_cast<std::size_t>(l);
+    std::array<Vec3, 4> q;
+    for (int k = 0; k < 4; ++k) q[k] = Vec3(qdot[k][0][l], qdot[k][1][l], qdot[k][2][l]);
+    if (body.settings.stiffness_hourglass) {
+      const double G_d = (1.0 - body.state[el].D) * body.constants.G;
+      const double kappa = hex8_stiffness_hourglass_coefficient(c_hg, G_d, V[l]);
+      hg_power[l] = hex8_hourglass_stiffness(q, kappa, dt, ms[l].R, body.hg[el]);
+      Q[l] = body.hg[el];
+    } else {
+      const double rho = body.element_mass[el] / V[l];
+      const double a_h = hex8_viscous_hourglass_coefficient(c_hg, rho, ms[l].c, V[l]);
+      hg_power[l] = hex8_hourglass_viscous(q, a_h, Q[l]);
+    }
+  }
+  Pair sigma[3][3], Qp[4][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) sigma[i][j] = _mm_set_pd(ms[1].sigma(i, j), ms[0].sigma(i, j));
+    for (int k = 0; k < 4; ++k) Qp[k][i] = _mm_set_pd(Q[1][k][i], Q[0][k][i]);
+  }
+  const Hex8FieldT<Pair> f = hex8_forces_cm(sigma, g, xm, Qp);
+  for (int l = 0; l < 2; ++l) {
+    std::array<Vec3, 8>& out = body.elem_force[e + l];
+    for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], f.u[2][a][l]);
+    finish_element(body, e + l, V[l], ms[l], hg_power[l], sums, erode);
+  }
 }
 
 void quad_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, BlockSums& sums,
                   std::vector<int>& erode) {
   const std::array<int, 8>& cn = body.conn[e];
-  Quad4Vectors x, v;
+  Quad4Field x, v;
   for (int a = 0; a < 4; ++a) {
-    x[a] = nodes.x[cn[a]].head<2>();
-    v[a] = nodes.v[cn[a]].head<2>();
+    const Vec3& xa = nodes.x[cn[a]];
+    const Vec3& va = nodes.v[cn[a]];
+    for (int i = 0; i < 2; ++i) {
+      x.u[i][a] = xa[i];
+      v.u[i][a] = va[i];
+    }
   }
-  const Quad4Gradient g = quad4_axisym_gradient(x);
+  const Quad4GradientCm g = quad4_axisym_gradient_cm(x);
   const double V = g.volume;
   body.volume[e] = V;
   if (!(g.area > 0.0) || !(V > 0.0)) return inverted_element(body, e, sums, erode);
-  const double L_c = quad4_axisym_characteristic_length(x, g.area);
+  const double L_c = quad4_axisym_characteristic_length_cm(x, g.area);
   body.char_length[e] = L_c;
 
   Mat3 L = Mat3::Zero();
   if (dt > 0.0) {
-    Quad4Vectors xm;
-    for (int a = 0; a < 4; ++a) xm[a] = x[a] - (0.5 * dt) * v[a];
-    L = quad4_axisym_velocity_gradient(v, quad4_axisym_gradient(xm));
+    Quad4Field xm;
+    for (int i = 0; i < 2; ++i)
+      for (int a = 0; a < 4; ++a) xm.u[i][a] = x.u[i][a] - (0.5 * dt) * v.u[i][a];
+    L = quad4_axisym_velocity_gradient_cm(v, quad4_axisym_gradient_cm(xm));
   }
   const MaterialStep ms = material_step(body, e, L, dt, V, L_c, sums);
 
-  Quad4Vectors f;
-  quad4_axisym_stress_forces(ms.sigma, g, f);
-  const std::array<double, 4> gamma = quad4_axisym_hourglass_vector(x, g);
+  Quad4Field f;
+  quad4_axisym_stress_forces_cm(ms.sigma, g, f);
+  const std::array<double, 4> gamma = quad4_axisym_hourglass_vector_cm(x, g);
   const double c_hg = body.settings.hourglass_coefficient;
   double hg_power = 0.0;
   if (body.settings.stiffness_hourglass) {
     const double G_d = (1.0 - body.state[e].D) * body.constants.G;
-    const double kappa = quad4_axisym_stiffness_hourglass_coefficient(c_hg, G_d, g);
-    Vec2 Q = body.hg[e][0].head<2>();
-    const Mat2 R = ms.R.topLeftCorner<2, 2>();
-    hg_power = quad4_axisym_hourglass_stiffness(gamma, v, kappa, dt, R, Q, f);
-    body.hg[e][0] = Vec3(Q.x(), Q.y(), 0.0);
+    const double kappa = quad4_axisym_stiffness_hourglass_coefficient(c_hg, G_d, g.rbar);
+    Vec3& Q = body.hg[e][0];
+    double q[2] = {Q.x(), Q.y()};
+    hg_power = quad4_axisym_hourglass_stiffness_cm(gamma, v, kappa, dt, ms.R, q, f);
+    Q = Vec3(q[0], q[1], 0.0);
   } else {
     const double rho = body.element_mass[e] / V;
-    const double a_h = quad4_axisym_viscous_hourglass_coefficient(c_hg, rho, ms.c, g);
-    hg_power = quad4_axisym_hourglass_viscous(gamma, v, a_h, f);
+    const double a_h = quad4_axisym_viscous_hourglass_coefficient(c_hg, rho, ms.c, g.rbar, g.area);
+    hg_power = quad4_axisym_hourglass_viscous_cm(gamma, v, a_h, f);
   }
-  finish_element(body, e, V, ms, hg_power, f, sums, erode);
+  std::array<Vec3, 8>& out = body.elem_force[e];
+  for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], 0.0);
+  finish_element(body, e, V, ms, hg_power, sums, erode);
 }
 
 }  // namespace
@@ -401,7 +532,12 @@ FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
     for (std::size_t e = k * block_size; e < end; ++e) {
       if (!body.active[e]) continue;
       if (hex) {
-        hex_element(body, nodes, e, dt, sums, my_erode);
+        if (e + 1 < end && body.active[e + 1]) {
+          hex_element_pair(body, nodes, e, dt, sums, my_erode);
+          ++e;
+        } else {
+          hex_element(body, nodes, e, dt, sums, my_erode);
+        }
       } else {
         quad_element(body, nodes, e, dt, sums, my_erode);
       }

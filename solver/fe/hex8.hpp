@@ -52,6 +52,8 @@
 // = sum_k Q^k . qdot^k (>= 0 for the viscous form).
 #pragma once
 
+#include <emmintrin.h>
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -62,6 +64,233 @@
 namespace splat {
 
 using Hex8Vectors = std::array<Vec3, 8>;
+
+// Component-major forms used by the element loop (fe_body.cpp); the Eigen
+// forms below convert to and from them, so both run the same arithmetic.
+// A field u[i][a] holds component i at node a (or mode a). Written in
+// scalars: Eigen's 3-vectors mix scalar stores with 2-wide packet loads of
+// the same memory, and the store-forwarding stalls cost more than the
+// arithmetic of a whole element. Each kernel is a template on the number type
+// T: double for one element, Pair (two doubles in one SSE2 register) for two
+// elements at once, lane by lane the same operations, so the same results
+// to the bit.
+using Pair = double __attribute__((vector_size(16)));  // SSE2 register of two doubles
+
+inline double lane_max(double a, double b) {
+  return std::max(a, b);
+}
+inline Pair lane_max(Pair a, Pair b) {
+  return _mm_max_pd(b, a);  // a where b is NaN, as std::max(a, b)
+}
+inline double lane_sqrt(double a) {
+  return std::sqrt(a);
+}
+inline Pair lane_sqrt(Pair a) {
+  return _mm_sqrt_pd(a);
+}
+
+template <class T>
+struct Hex8FieldT {
+  T u[3][8];
+};
+using Hex8Field = Hex8FieldT<double>;
+
+// Geometry in mode form: g[u-1][j] = component j of g_u = dV/dc_u, u = 1..6.
+template <class T>
+struct Hex8GeometryCmT {
+  T g[6][3];
+  T volume;
+};
+using Hex8GeometryCm = Hex8GeometryCmT<double>;
+
+// c_u = (1/8) sum_a s_u(a) u_a: butterflies (lo, hi) -> (hi + lo, hi - lo)
+// along xi, then eta, then zeta.
+template <class T>
+inline Hex8FieldT<T> hex8_modes_cm(const Hex8FieldT<T>& n) {
+  Hex8FieldT<T> m;
+  for (int i = 0; i < 3; ++i) {
+    const T* u = n.u[i];
+    const T s01 = u[1] + u[0], d01 = u[1] - u[0];  // eta -, zeta -
+    const T s32 = u[2] + u[3], d32 = u[2] - u[3];  // eta +, zeta -
+    const T s45 = u[5] + u[4], d45 = u[5] - u[4];  // eta -, zeta +
+    const T s76 = u[6] + u[7], d76 = u[6] - u[7];  // eta +, zeta +
+    const T ss0 = s32 + s01, sd0 = s32 - s01, ds0 = d32 + d01, dd0 = d32 - d01;
+    const T ss1 = s76 + s45, sd1 = s76 - s45, ds1 = d76 + d45, dd1 = d76 - d45;
+    T* c = m.u[i];
+    c[0] = 0.125 * (ss1 + ss0);
+    c[1] = 0.125 * (ds1 + ds0);  // xi
+    c[2] = 0.125 * (sd1 + sd0);  // eta
+    c[3] = 0.125 * (ss1 - ss0);  // zeta
+    c[4] = 0.125 * (sd1 - sd0);  // eta zeta
+    c[5] = 0.125 * (ds1 - ds0);  // xi zeta
+    c[6] = 0.125 * (dd1 + dd0);  // xi eta
+    c[7] = 0.125 * (dd1 - dd0);  // xi eta zeta
+  }
+  return m;
+}
+
+// u_a = sum_u s_u(a) c_u: the butterflies backwards.
+template <class T>
+inline Hex8FieldT<T> hex8_nodal_cm(const Hex8FieldT<T>& m) {
+  Hex8FieldT<T> n;
+  for (int i = 0; i < 3; ++i) {
+    const T* c = m.u[i];
+    const T ss0 = c[0] - c[3], ss1 = c[0] + c[3];
+    const T sd0 = c[2] - c[4], sd1 = c[2] + c[4];
+    const T ds0 = c[1] - c[5], ds1 = c[1] + c[5];
+    const T dd0 = c[6] - c[7], dd1 = c[6] + c[7];
+    const T s01 = ss0 - sd0, s32 = ss0 + sd0, d01 = ds0 - dd0, d32 = ds0 + dd0;
+    const T s45 = ss1 - sd1, s76 = ss1 + sd1, d45 = ds1 - dd1, d76 = ds1 + dd1;
+    T* u = n.u[i];
+    u[0] = s01 - d01;
+    u[1] = s01 + d01;
+    u[3] = s32 - d32;
+    u[2] = s32 + d32;
+    u[4] = s45 - d45;
+    u[5] = s45 + d45;
+    u[7] = s76 - d76;
+    u[6] = s76 + d76;
+  }
+  return n;
+}
+
+// g_u and the exact volume from the position modes (formulas in the header
+// comment above); only modes 1..6 are read.
+template <class T>
+inline Hex8GeometryCmT<T> hex8_geometry_cm(const Hex8FieldT<T>& x) {
+  const auto& c = x.u;
+  // a x b, component i, of modes p and q.
+  auto cross = [&c](int p, int q, int i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    return c[j][p] * c[k][q] - c[k][p] * c[j][q];
+  };
+  constexpr double third = 1.0 / 3.0;
+  Hex8GeometryCmT<T> g;
+  for (int i = 0; i < 3; ++i) {
+    // modes: e1 = 1, e2 = 2, e3 = 3, h1 = 4, h2 = 5, h3 = 6
+    g.g[0][i] = 8.0 * (cross(2, 3, i) + third * cross(6, 5, i));
+    g.g[1][i] = 8.0 * (cross(3, 1, i) + third * cross(4, 6, i));
+    g.g[2][i] = 8.0 * (cross(1, 2, i) + third * cross(5, 4, i));
+    g.g[3][i] = (8.0 * third) * (cross(3, 5, i) + cross(6, 2, i));
+    g.g[4][i] = (8.0 * third) * (cross(1, 6, i) + cross(4, 3, i));
+    g.g[5][i] = (8.0 * third) * (cross(5, 1, i) + cross(2, 4, i));
+  }
+  // V = e_1 . g_1 + h_1 . g_4
+  g.volume = (c[0][1] * g.g[0][0] + c[1][1] * g.g[0][1] + c[2][1] * g.g[0][2]) +
+             (c[0][4] * g.g[3][0] + c[1][4] * g.g[3][1] + c[2][4] * g.g[3][2]);
+  return g;
+}
+
+// L = (1/V) sum_u w_u (x) g_u, 1/s.
+template <class T>
+inline void hex8_velocity_gradient_cm(const Hex8FieldT<T>& w, const Hex8GeometryCmT<T>& g,
+                                      T L[3][3]) {
+  const T inv_v = 1.0 / g.volume;  // one division, not nine
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      T sum = w.u[i][1] * g.g[0][j];
+      for (int u = 2; u <= 6; ++u) sum += w.u[i][u] * g.g[u - 1][j];
+      L[i][j] = sum * inv_v;
+    }
+  }
+}
+inline Mat3 hex8_velocity_gradient_cm(const Hex8Field& w, const Hex8GeometryCm& g) {
+  double L[3][3];
+  hex8_velocity_gradient_cm(w, g, L);
+  Mat3 out;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) out(i, j) = L[i][j];
+  return out;
+}
+
+// qdot^k = 8 (w_{3+k} - L h_k), k = 1..4, m/s (as hex8_hourglass_rates):
+// qdot[k][i] is component i.
+template <class T>
+inline void hex8_hourglass_rates_cm(const Hex8FieldT<T>& w, const Hex8FieldT<T>& x, const T L[3][3],
+                                    T qdot[4][3]) {
+  for (int k = 0; k < 4; ++k) {
+    const int u = 4 + k;
+    for (int i = 0; i < 3; ++i) {
+      const T lh = L[i][0] * x.u[0][u] + L[i][1] * x.u[1][u] + L[i][2] * x.u[2][u];
+      qdot[k][i] = 8.0 * (w.u[i][u] - lh);
+    }
+  }
+}
+inline std::array<Vec3, 4> hex8_hourglass_rates_cm(const Hex8Field& w, const Hex8Field& x,
+                                                   const Mat3& L) {
+  double Lc[3][3], q[4][3];
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) Lc[i][j] = L(i, j);
+  hex8_hourglass_rates_cm(w, x, Lc, q);
+  std::array<Vec3, 4> qdot;
+  for (int k = 0; k < 4; ++k) qdot[k] = Vec3(q[k][0], q[k][1], q[k][2]);
+  return qdot;
+}
+
+// f_a = -V sigma b_a - sum_k gamma^k_a Q^k (as hex8_forces), N; Q[k][i] is
+// component i of Q^k.
+template <class T>
+inline Hex8FieldT<T> hex8_forces_cm(const T sigma[3][3], const Hex8GeometryCmT<T>& g,
+                                    const Hex8FieldT<T>& x, const T Q[4][3]) {
+  // f_a = sum_{u=1..6} s_u(a) F_u - sum_k s_{3+k}(a) Q^k,
+  // F_u = -S g_u, S = (sigma - M / V) / 8, M = 8 sum_k Q^k (x) h_k.
+  const T inv_v = 1.0 / g.volume;
+  T S[3][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const T m =
+          Q[0][i] * x.u[j][4] + Q[1][i] * x.u[j][5] + Q[2][i] * x.u[j][6] + Q[3][i] * x.u[j][7];
+      S[i][j] = 0.125 * sigma[i][j] - m * inv_v;
+    }
+  }
+  Hex8FieldT<T> F;
+  for (int i = 0; i < 3; ++i) {
+    F.u[i][0] = T{};
+    for (int u = 1; u <= 6; ++u) {
+      const T* gu = g.g[u - 1];
+      F.u[i][u] = -(S[i][0] * gu[0] + S[i][1] * gu[1] + S[i][2] * gu[2]);
+    }
+    for (int k = 0; k < 3; ++k) F.u[i][4 + k] -= Q[k][i];
+    F.u[i][7] = -Q[3][i];
+  }
+  return hex8_nodal_cm(F);
+}
+inline Hex8Field hex8_forces_cm(const Mat3& sigma, const Hex8GeometryCm& g, const Hex8Field& x,
+                                const std::array<Vec3, 4>& Q) {
+  double s[3][3], q[4][3];
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) s[i][j] = sigma(i, j);
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) q[k][i] = Q[k][i];
+  return hex8_forces_cm(s, g, x, q);
+}
+
+// (2 A)^2 of the largest face (A its area from the diagonals), m^4.
+template <class T>
+inline T hex8_max_face_area2_cm(const Hex8FieldT<T>& x) {
+  // Faces of the unit cube by their node indices, in cyclic order.
+  constexpr int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                               {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  T max_area2 = T{};
+  for (const auto& fc : faces) {
+    T d1[3], d2[3];
+    for (int i = 0; i < 3; ++i) {
+      d1[i] = x.u[i][fc[2]] - x.u[i][fc[0]];
+      d2[i] = x.u[i][fc[3]] - x.u[i][fc[1]];
+    }
+    const T n0 = d1[1] * d2[2] - d1[2] * d2[1];
+    const T n1 = d1[2] * d2[0] - d1[0] * d2[2];
+    const T n2 = d1[0] * d2[1] - d1[1] * d2[0];
+    max_area2 = lane_max(max_area2, n0 * n0 + n1 * n1 + n2 * n2);
+  }
+  return max_area2;
+}
+
+// L_c = V / (largest face area), m (as hex8_characteristic_length).
+inline double hex8_characteristic_length_cm(const Hex8Field& x, double volume) {
+  const double max_area2 = hex8_max_face_area2_cm(x);
+  return max_area2 > 0.0 ? 2.0 * volume / std::sqrt(max_area2) : 0.0;
+}
 
 // Coefficients c_u of a nodal vector field in the eight sign patterns.
 struct Hex8Modes {
@@ -91,11 +320,7 @@ struct Hex8Gradient {
 Hex8Gradient hex8_gradient(const Hex8Vectors& x);
 
 // L = (1/V) sum_u w_u (x) g_u, 1/s.
-inline Mat3 hex8_velocity_gradient(const Hex8Modes& w, const Hex8Geometry& g) {
-  Mat3 L = w.c[1] * g.g[0].transpose();
-  for (int u = 2; u <= 6; ++u) L.noalias() += w.c[u] * g.g[u - 1].transpose();
-  return L * (1.0 / g.volume);  // one division, not nine
-}
+Mat3 hex8_velocity_gradient(const Hex8Modes& w, const Hex8Geometry& g);
 
 // L = sum_a v_a (x) b_a, 1/s.
 inline Mat3 hex8_velocity_gradient(const Hex8Vectors& v, const Hex8Gradient& g) {
@@ -106,12 +331,7 @@ inline Mat3 hex8_velocity_gradient(const Hex8Vectors& v, const Hex8Gradient& g) 
 
 // qdot^k = 8 (w_{3+k} - L h_k), k = 1..4, from the modes w of the velocities
 // and x of the positions, L the velocity gradient on that geometry, m/s.
-inline std::array<Vec3, 4> hex8_hourglass_rates(const Hex8Modes& w, const Hex8Modes& x,
-                                                const Mat3& L) {
-  std::array<Vec3, 4> qdot;
-  for (int k = 0; k < 4; ++k) qdot[k] = 8.0 * (w.c[4 + k] - L * x.c[4 + k]);
-  return qdot;
-}
+std::array<Vec3, 4> hex8_hourglass_rates(const Hex8Modes& w, const Hex8Modes& x, const Mat3& L);
 
 // f_a = -V sigma b_a - sum_k gamma^k_a Q^k on the geometry g of positions
 // with modes x, N.

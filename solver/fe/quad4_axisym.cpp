@@ -4,52 +4,84 @@
 
 namespace splat {
 
+namespace {
+
+Quad4Field to_cm(const Quad4Vectors& v) {
+  Quad4Field f;
+  for (int a = 0; a < 4; ++a) {
+    f.u[0][a] = v[a].x();
+    f.u[1][a] = v[a].y();
+  }
+  return f;
+}
+
+Quad4Vectors from_cm(const Quad4Field& f) {
+  Quad4Vectors v;
+  for (int a = 0; a < 4; ++a) v[a] = Vec2(f.u[0][a], f.u[1][a]);
+  return v;
+}
+
+Quad4GradientCm to_cm(const Quad4Gradient& g) {
+  Quad4GradientCm c;
+  for (int a = 0; a < 4; ++a) {
+    c.b[0][a] = g.b[a].x();
+    c.b[1][a] = g.b[a].y();
+  }
+  c.area = g.area;
+  c.rbar = g.rbar;
+  c.volume = g.volume;
+  return c;
+}
+
+}  // namespace
+
 Quad4Gradient quad4_axisym_gradient(const Quad4Vectors& x) {
-  const double r0 = x[0].x(), r1 = x[1].x(), r2 = x[2].x(), r3 = x[3].x();
-  const double z0 = x[0].y(), z1 = x[1].y(), z2 = x[2].y(), z3 = x[3].y();
+  const Quad4GradientCm c = quad4_axisym_gradient_cm(to_cm(x));
   Quad4Gradient g;
-  const double two_a = (r0 - r2) * (z1 - z3) + (r1 - r3) * (z2 - z0);
-  g.area = 0.5 * two_a;
-  g.rbar = 0.25 * ((r0 + r1) + (r2 + r3));
-  g.volume = g.rbar * g.area;
-  const double inv = two_a != 0.0 ? 1.0 / two_a : 0.0;
-  g.b[0] = inv * Vec2(z1 - z3, r3 - r1);
-  g.b[1] = inv * Vec2(z2 - z0, r0 - r2);
-  g.b[2] = inv * Vec2(z3 - z1, r1 - r3);
-  g.b[3] = inv * Vec2(z0 - z2, r2 - r0);
+  for (int a = 0; a < 4; ++a) g.b[a] = Vec2(c.b[0][a], c.b[1][a]);
+  g.area = c.area;
+  g.rbar = c.rbar;
+  g.volume = c.volume;
   return g;
 }
 
+Mat3 quad4_axisym_velocity_gradient(const Quad4Vectors& v, const Quad4Gradient& g) {
+  return quad4_axisym_velocity_gradient_cm(to_cm(v), to_cm(g));
+}
+
+void quad4_axisym_stress_forces(const Mat3& sigma, const Quad4Gradient& g, Quad4Vectors& f) {
+  Quad4Field fc;
+  quad4_axisym_stress_forces_cm(sigma, to_cm(g), fc);
+  f = from_cm(fc);
+}
+
 double quad4_axisym_characteristic_length(const Quad4Vectors& x, double area) {
-  const double d2 = std::max((x[2] - x[0]).squaredNorm(), (x[3] - x[1]).squaredNorm());
-  return d2 > 0.0 ? area / std::sqrt(d2) : 0.0;
+  return quad4_axisym_characteristic_length_cm(to_cm(x), area);
 }
 
 std::array<double, 4> quad4_axisym_hourglass_vector(const Quad4Vectors& x, const Quad4Gradient& g) {
-  constexpr double base[4] = {1.0, -1.0, 1.0, -1.0};
-  const Vec2 h = (x[0] - x[1]) + (x[2] - x[3]);  // sum_b Gamma_b x_b
-  std::array<double, 4> gamma;
-  for (int a = 0; a < 4; ++a) gamma[a] = base[a] - h.dot(g.b[a]);
-  return gamma;
+  return quad4_axisym_hourglass_vector_cm(to_cm(x), to_cm(g));
 }
 
 double quad4_axisym_hourglass_viscous(const std::array<double, 4>& gamma, const Quad4Vectors& v,
                                       double a_h, Quad4Vectors& f) {
-  Vec2 qdot = Vec2::Zero();
-  for (int a = 0; a < 4; ++a) qdot += gamma[a] * v[a];
-  const Vec2 Q = a_h * qdot;
-  for (int a = 0; a < 4; ++a) f[a] -= gamma[a] * Q;
-  return a_h * qdot.squaredNorm();
+  Quad4Field fc = to_cm(f);
+  const double power = quad4_axisym_hourglass_viscous_cm(gamma, to_cm(v), a_h, fc);
+  f = from_cm(fc);
+  return power;
 }
 
 double quad4_axisym_hourglass_stiffness(const std::array<double, 4>& gamma, const Quad4Vectors& v,
                                         double kappa, double dt, const Mat2& R, Vec2& Q,
                                         Quad4Vectors& f) {
-  Vec2 qdot = Vec2::Zero();
-  for (int a = 0; a < 4; ++a) qdot += gamma[a] * v[a];
-  Q = R * Q + (kappa * dt) * qdot;
-  for (int a = 0; a < 4; ++a) f[a] -= gamma[a] * Q;
-  return Q.dot(qdot);
+  Mat3 R3 = Mat3::Identity();
+  R3.topLeftCorner<2, 2>() = R;
+  double q[2] = {Q.x(), Q.y()};
+  Quad4Field fc = to_cm(f);
+  const double power = quad4_axisym_hourglass_stiffness_cm(gamma, to_cm(v), kappa, dt, R3, q, fc);
+  Q = Vec2(q[0], q[1]);
+  f = from_cm(fc);
+  return power;
 }
 
 }  // namespace splat

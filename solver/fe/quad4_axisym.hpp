@@ -50,6 +50,129 @@ namespace splat {
 
 using Quad4Vectors = std::array<Vec2, 4>;
 
+// Component-major forms used by the element loop (fe_body.cpp); the Eigen
+// forms below convert to and from them, so both run the same arithmetic.
+// u[0][a] = r and u[1][a] = z component at node a. Written in scalars:
+// building Eigen 2-vectors from two scalars made GCC store both and reload
+// them as one packet, a store-forwarding stall per vector.
+struct Quad4Field {
+  double u[2][4];
+};
+
+struct Quad4GradientCm {
+  double b[2][4];       // mean area gradient: b[0][a] = d/dr, b[1][a] = d/dz, 1/m
+  double area = 0.0;    // signed area, m^2 (<= 0: inverted)
+  double rbar = 0.0;    // mean nodal radius, m
+  double volume = 0.0;  // rbar A, m^3 per radian
+};
+
+inline Quad4GradientCm quad4_axisym_gradient_cm(const Quad4Field& x) {
+  const double r0 = x.u[0][0], r1 = x.u[0][1], r2 = x.u[0][2], r3 = x.u[0][3];
+  const double z0 = x.u[1][0], z1 = x.u[1][1], z2 = x.u[1][2], z3 = x.u[1][3];
+  Quad4GradientCm g;
+  const double two_a = (r0 - r2) * (z1 - z3) + (r1 - r3) * (z2 - z0);
+  g.area = 0.5 * two_a;
+  g.rbar = 0.25 * ((r0 + r1) + (r2 + r3));
+  g.volume = g.rbar * g.area;
+  const double inv = two_a != 0.0 ? 1.0 / two_a : 0.0;
+  g.b[0][0] = inv * (z1 - z3);
+  g.b[1][0] = inv * (r3 - r1);
+  g.b[0][1] = inv * (z2 - z0);
+  g.b[1][1] = inv * (r0 - r2);
+  g.b[0][2] = inv * (z3 - z1);
+  g.b[1][2] = inv * (r1 - r3);
+  g.b[0][3] = inv * (z0 - z2);
+  g.b[1][3] = inv * (r2 - r0);
+  return g;
+}
+
+// 3x3 velocity gradient, components (r, z, theta), 1/s.
+inline Mat3 quad4_axisym_velocity_gradient_cm(const Quad4Field& v, const Quad4GradientCm& g) {
+  double L2[2][2];
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      double sum = v.u[i][0] * g.b[j][0];
+      for (int a = 1; a < 4; ++a) sum += v.u[i][a] * g.b[j][a];
+      L2[i][j] = sum;
+    }
+  }
+  const double vr = ((v.u[0][0] + v.u[0][1]) + v.u[0][2]) + v.u[0][3];
+  Mat3 L;
+  L << L2[0][0], L2[0][1], 0.0,  //
+      L2[1][0], L2[1][1], 0.0,   //
+      0.0, 0.0, g.rbar > 0.0 ? 0.25 * vr / g.rbar : 0.0;
+  return L;
+}
+
+// Internal forces per radian from the (r, z, theta) Cauchy stress (overwrites f), N.
+inline void quad4_axisym_stress_forces_cm(const Mat3& sigma, const Quad4GradientCm& g,
+                                          Quad4Field& f) {
+  const double V = g.volume;
+  const double hoop = 0.25 * sigma(2, 2) * g.area;
+  for (int a = 0; a < 4; ++a) {
+    const double br = g.b[0][a], bz = g.b[1][a];
+    f.u[0][a] = -V * (sigma(0, 0) * br + sigma(0, 1) * bz) - hoop;
+    f.u[1][a] = -V * (sigma(1, 0) * br + sigma(1, 1) * bz);
+  }
+}
+
+// L_c = A / max(|x_2 - x_0|, |x_3 - x_1|), m.
+inline double quad4_axisym_characteristic_length_cm(const Quad4Field& x, double area) {
+  const double dr0 = x.u[0][2] - x.u[0][0], dz0 = x.u[1][2] - x.u[1][0];
+  const double dr1 = x.u[0][3] - x.u[0][1], dz1 = x.u[1][3] - x.u[1][1];
+  const double d2 = std::max(dr0 * dr0 + dz0 * dz0, dr1 * dr1 + dz1 * dz1);
+  return d2 > 0.0 ? area / std::sqrt(d2) : 0.0;
+}
+
+// gamma_a of the single hourglass mode, -.
+inline std::array<double, 4> quad4_axisym_hourglass_vector_cm(const Quad4Field& x,
+                                                              const Quad4GradientCm& g) {
+  constexpr double base[4] = {1.0, -1.0, 1.0, -1.0};
+  double h[2];  // sum_b Gamma_b x_b
+  for (int i = 0; i < 2; ++i) h[i] = (x.u[i][0] - x.u[i][1]) + (x.u[i][2] - x.u[i][3]);
+  std::array<double, 4> gamma;
+  for (int a = 0; a < 4; ++a) gamma[a] = base[a] - (h[0] * g.b[0][a] + h[1] * g.b[1][a]);
+  return gamma;
+}
+
+// qdot = sum_a gamma_a v_a, m/s.
+inline void quad4_axisym_hourglass_rate_cm(const std::array<double, 4>& gamma, const Quad4Field& v,
+                                           double qdot[2]) {
+  for (int i = 0; i < 2; ++i) {
+    double sum = 0.0;
+    for (int a = 0; a < 4; ++a) sum += gamma[a] * v.u[i][a];
+    qdot[i] = sum;
+  }
+}
+
+// Adds the viscous hourglass forces; returns a_h |qdot|^2 >= 0, W per radian.
+inline double quad4_axisym_hourglass_viscous_cm(const std::array<double, 4>& gamma,
+                                                const Quad4Field& v, double a_h, Quad4Field& f) {
+  double qdot[2];
+  quad4_axisym_hourglass_rate_cm(gamma, v, qdot);
+  const double Q[2] = {a_h * qdot[0], a_h * qdot[1]};
+  for (int i = 0; i < 2; ++i)
+    for (int a = 0; a < 4; ++a) f.u[i][a] -= gamma[a] * Q[i];
+  return a_h * (qdot[0] * qdot[0] + qdot[1] * qdot[1]);
+}
+
+// Rotates Q (N per radian) by the in-plane rotation R (the (r, z) block of a
+// 3x3 rotation), adds kappa dt qdot, adds f_a = -gamma_a Q; returns Q . qdot,
+// W per radian.
+inline double quad4_axisym_hourglass_stiffness_cm(const std::array<double, 4>& gamma,
+                                                  const Quad4Field& v, double kappa, double dt,
+                                                  const Mat3& R, double Q[2], Quad4Field& f) {
+  double qdot[2];
+  quad4_axisym_hourglass_rate_cm(gamma, v, qdot);
+  const double Q0 = (R(0, 0) * Q[0] + R(0, 1) * Q[1]) + (kappa * dt) * qdot[0];
+  const double Q1 = (R(1, 0) * Q[0] + R(1, 1) * Q[1]) + (kappa * dt) * qdot[1];
+  Q[0] = Q0;
+  Q[1] = Q1;
+  for (int i = 0; i < 2; ++i)
+    for (int a = 0; a < 4; ++a) f.u[i][a] -= gamma[a] * Q[i];
+  return Q[0] * qdot[0] + Q[1] * qdot[1];
+}
+
 struct Quad4Gradient {
   Quad4Vectors b;       // mean area gradient (d/dr, d/dz), 1/m
   double area = 0.0;    // signed area, m^2 (<= 0: inverted)
@@ -60,29 +183,10 @@ struct Quad4Gradient {
 Quad4Gradient quad4_axisym_gradient(const Quad4Vectors& x);
 
 // 3x3 velocity gradient, components (r, z, theta), 1/s.
-inline Mat3 quad4_axisym_velocity_gradient(const Quad4Vectors& v, const Quad4Gradient& g) {
-  Mat2 L2 = v[0] * g.b[0].transpose();
-  double vr = v[0].x();
-  for (int a = 1; a < 4; ++a) {
-    L2.noalias() += v[a] * g.b[a].transpose();
-    vr += v[a].x();
-  }
-  Mat3 L = Mat3::Zero();
-  L.topLeftCorner<2, 2>() = L2;
-  L(2, 2) = g.rbar > 0.0 ? 0.25 * vr / g.rbar : 0.0;
-  return L;
-}
+Mat3 quad4_axisym_velocity_gradient(const Quad4Vectors& v, const Quad4Gradient& g);
 
 // Internal forces per radian from the (r, z, theta) Cauchy stress (overwrites f), N.
-inline void quad4_axisym_stress_forces(const Mat3& sigma, const Quad4Gradient& g, Quad4Vectors& f) {
-  const double V = g.volume;
-  const double hoop = 0.25 * sigma(2, 2) * g.area;
-  for (int a = 0; a < 4; ++a) {
-    const Vec2& b = g.b[a];
-    f[a] = Vec2(-V * (sigma(0, 0) * b.x() + sigma(0, 1) * b.y()) - hoop,
-                -V * (sigma(1, 0) * b.x() + sigma(1, 1) * b.y()));
-  }
-}
+void quad4_axisym_stress_forces(const Mat3& sigma, const Quad4Gradient& g, Quad4Vectors& f);
 
 // L_c = A / max(|x_2 - x_0|, |x_3 - x_1|), m.
 double quad4_axisym_characteristic_length(const Quad4Vectors& x, double area);
@@ -92,14 +196,21 @@ std::array<double, 4> quad4_axisym_hourglass_vector(const Quad4Vectors& x, const
 
 // a_h = c_hg rho c rbar sqrt(A) / 2, kg/s per radian.
 inline double quad4_axisym_viscous_hourglass_coefficient(double c_hg, double rho, double c,
+                                                         double rbar, double area) {
+  return 0.5 * c_hg * rho * c * rbar * std::sqrt(std::max(area, 0.0));
+}
+inline double quad4_axisym_viscous_hourglass_coefficient(double c_hg, double rho, double c,
                                                          const Quad4Gradient& g) {
-  return 0.5 * c_hg * rho * c * g.rbar * std::sqrt(std::max(g.area, 0.0));
+  return quad4_axisym_viscous_hourglass_coefficient(c_hg, rho, c, g.rbar, g.area);
 }
 
 // kappa = c_hg G_d rbar / 2, N/m per radian.
+inline double quad4_axisym_stiffness_hourglass_coefficient(double c_hg, double G_d, double rbar) {
+  return 0.5 * c_hg * G_d * rbar;
+}
 inline double quad4_axisym_stiffness_hourglass_coefficient(double c_hg, double G_d,
                                                            const Quad4Gradient& g) {
-  return 0.5 * c_hg * G_d * g.rbar;
+  return quad4_axisym_stiffness_hourglass_coefficient(c_hg, G_d, g.rbar);
 }
 
 // Adds the viscous hourglass forces; returns a_h |qdot|^2 >= 0, W per radian.

@@ -1,5 +1,7 @@
 #include "solver/input/scene_io.hpp"
 
+#include "solver/input/impact_scene.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,6 +11,7 @@
 #include <utility>
 
 #include "solver/input/adhesion_io.hpp"
+#include "solver/input/impact_scene.hpp"
 #include "solver/input/material_io.hpp"
 #include "solver/input/schema.hpp"
 #include "solver/mesh/mesh.hpp"
@@ -84,8 +87,17 @@ constexpr std::array<std::pair<BoundaryType, std::string_view>, 4> boundary_type
     {BoundaryType::velocity, "velocity"},
     {BoundaryType::absorbing, "absorbing"},
 }};
-constexpr std::array<std::pair<InteractionType, std::string_view>, 1> interaction_names{{
+constexpr std::array<std::pair<InteractionType, std::string_view>, 2> interaction_names{{
     {InteractionType::rigid_wall, "rigid-wall"},
+    {InteractionType::contact, "contact"},
+}};
+constexpr std::array<std::pair<ContactMethod, std::string_view>, 2> contact_method_names{{
+    {ContactMethod::lagrange, "lagrange"},
+    {ContactMethod::penalty, "penalty"},
+}};
+constexpr std::array<std::pair<ContactSolverKind, std::string_view>, 2> contact_solver_names{{
+    {ContactSolverKind::pgs, "pgs"},
+    {ContactSolverKind::active_set, "active-set"},
 }};
 
 template <class E, std::size_t N>
@@ -502,6 +514,32 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
                                   bool axisym, Problems& problems) {
   InteractionSpec in;
   in.type = from_name(interaction_names, j.at("type").get<std::string>());
+  if (in.type == InteractionType::contact) {
+    in.master = j.at("master").get<std::string>();
+    in.slave = j.at("slave").get<std::string>();
+    for (const char* side : {"master", "slave"}) {
+      const std::string& name = side[0] == 'm' ? in.master : in.slave;
+      if (find_body(scene, name) == nullptr) {
+        problems.add(at(p, side), "no body named \"" + name + "\"");
+      }
+    }
+    if (in.master == in.slave) {
+      problems.add(at(p, "slave"), "must differ from master (self-contact is not available)");
+    }
+    in.method = from_name(contact_method_names, value_or(j, "method", std::string("lagrange")));
+    in.penalty_stiffness = value_or(j, "penalty_stiffness", 0.0);
+    in.friction = value_or(j, "friction", 0.0);
+    in.solver = from_name(contact_solver_names, value_or(j, "solver", std::string("pgs")));
+    in.two_pass = value_or(j, "two_pass", false);
+    if (in.friction > 0.0 && in.method == ContactMethod::lagrange &&
+        in.solver == ContactSolverKind::active_set) {
+      problems.add(at(p, "solver"), "active-set is frictionless: use pgs with friction > 0");
+    }
+    if (in.method != ContactMethod::penalty && j.contains("penalty_stiffness")) {
+      problems.add(at(p, "penalty_stiffness"), "only with method \"penalty\"");
+    }
+    return in;
+  }
   if (const auto bodies = j.find("bodies"); bodies != j.end()) {
     for (std::size_t i = 0; i < bodies->size(); ++i) {
       in.bodies.push_back(bodies->at(i).get<std::string>());
@@ -525,6 +563,17 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
 }
 
 json interaction_to_json(const InteractionSpec& in) {
+  if (in.type == InteractionType::contact) {
+    json j{{"type", name_of(interaction_names, in.type)},
+           {"master", in.master},
+           {"slave", in.slave},
+           {"method", name_of(contact_method_names, in.method)},
+           {"friction", in.friction},
+           {"solver", name_of(contact_solver_names, in.solver)},
+           {"two_pass", in.two_pass}};
+    if (in.method == ContactMethod::penalty) j["penalty_stiffness"] = in.penalty_stiffness;
+    return j;
+  }
   json j{{"type", name_of(interaction_names, in.type)},
          {"point", to_json_vec(in.point)},
          {"normal", to_json_vec(in.normal)}};
@@ -726,6 +775,21 @@ void apply_override(json& doc, const std::string& text) {
 
 LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
   validate_or_throw("scene", doc);
+  if (doc.contains("particle_impact") && !doc.contains("bodies") && !doc.contains("two_mass")) {
+    const ExpandedImpact expanded = expand_particle_impact(doc);
+    LoadedScene loaded = read_scene(expanded.scene, base_dir);
+    const json& block = expanded.scene.at("particle_impact");
+    ImpactSpec impact;
+    impact.substrate = expanded.choice.rigid_substrate ? "" : "substrate";
+    impact.velocity = block.at("velocity").get<double>();
+    impact.angle = block.value("angle", 0.0);
+    impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
+    impact.model = expanded.choice.model;
+    impact.why = expanded.choice.why;
+    loaded.scene.impact = impact;
+    loaded.resolved["particle_impact"] = block;
+    return loaded;
+  }
   Problems problems;
   LoadedScene loaded;
   Scene& scene = loaded.scene;

@@ -30,13 +30,20 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
   constexpr int max_iterations = 200;
   const double three_g = 3.0 * G_d;
   ReturnMapResult r;
+  const bool rate_on = rate_hardening && jc.C > 0.0;
+  const double inv_ref = 1.0 / (jc.eps_dot_0 * dt);  // dp -> eps_dot / eps_dot_0
+  // hard and rate at dp, for a dp the iteration did not end on.
+  auto set_terms = [&](double dp) {
+    r.hard = jc_hardening(jc, eps_p + dp);
+    const double x = dp * inv_ref;
+    r.rate = rate_on && x > 1.0 ? 1.0 + jc.C * std::log(x) : 1.0;
+  };
   if (scale <= 0.0) {  // molten or fully damaged: no strength, return to the axis
     r.delta_eps_p = q_trial / three_g;
     r.iterations = 0;
+    set_terms(r.delta_eps_p);
     return r;
   }
-  const bool rate_on = rate_hardening && jc.C > 0.0;
-  const double inv_ref = 1.0 / (jc.eps_dot_0 * dt);  // dp -> eps_dot / eps_dot_0
   double lo = 0.0;
   double hi = q_trial / three_g;
   // Converged when the residual is a tiny fraction of the trial stress or the
@@ -61,7 +68,7 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     const double ep = eps_p + dp;
     double hard = jc.A, d_hard = 0.0;
     if (ep > 0.0) {
-      const double pw = std::pow(ep, jc.n);
+      const double pw = std::exp(jc.n * std::log(ep));  // ep^n: exp and log cost less than pow
       hard += jc.B * pw;
       d_hard = jc.B * jc.n * pw / ep;
     }
@@ -71,6 +78,8 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
       rate += jc.C * std::log(x);
       d_rate = jc.C / dp;
     }
+    r.hard = hard;
+    r.rate = rate;
     r.hard_rate = hard * rate;
     const double g = q_trial - three_g * dp - scale * r.hard_rate;
     if (std::abs(g) <= tol_g) {
@@ -93,6 +102,10 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     dp = next;
   }
   r.delta_eps_p = dp;
+  if (!r.converged) {  // the last Newton or bisection point was not evaluated
+    set_terms(dp);
+    r.hard_rate = r.hard * r.rate;
+  }
   return r;
 }
 

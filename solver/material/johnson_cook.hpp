@@ -25,7 +25,7 @@ inline double jc_thermal_factor(const JohnsonCookParams& jc, bool enabled, doubl
   const double t_star = (T - jc.T_ref) / (jc.T_melt - jc.T_ref);
   if (t_star <= 0.0) return 1.0;
   if (t_star >= 1.0) return 0.0;
-  return 1.0 - std::pow(t_star, jc.m);
+  return 1.0 - std::exp(jc.m * std::log(t_star));  // t_star^m: exp and log cost less than pow
 }
 
 inline double jc_rate_factor(const JohnsonCookParams& jc, bool enabled, double eps_dot_p) {
@@ -44,6 +44,8 @@ FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwit
 struct ReturnMapResult {
   double delta_eps_p = 0.0;  // plastic strain increment, -
   double hard_rate = 0.0;    // (A + B eps_p^n)(1 + C ln eps_dot*) at the solution, Pa
+  double hard = 0.0;         // A + B (eps_p + dp)^n at the solution, Pa
+  double rate = 1.0;         // 1 + C ln max(eps_dot*, 1) at the solution, -
   int iterations = 0;        // Newton or bisection iterations used
   bool converged = true;
 };

@@ -30,6 +30,8 @@ PointState initial_point_state(const Material& m, const ModelSwitches& sw, doubl
   PointState st;
   st.T = T0;
   st.D = sw.damage ? D0 : 0.0;
+  st.hardening = jc_hardening(m.strength, 0.0);
+  st.strength_scale = (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, T0);
   st.sigma_y_static = (1.0 - st.D) * johnson_cook_flow_stress(m.strength, sw, 0.0, 0.0, T0).value;
   st.sigma_y = st.sigma_y_static;
   st.sigma_y_peak = st.sigma_y;
@@ -110,16 +112,14 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   Mat3 s = st.s + 2.0 * G_d * deviator(d_eps);
   const double q_trial = von_mises(s);
   double dp = 0.0;
-  double hard_rate = 0.0;
-  double scale = 0.0;
+  // (1 - D)(1 - T*^m) and A + B eps_p^n at the start of the step, kept in the
+  // state by the last plastic step (or initial_point_state).
+  const double scale = st.strength_scale;
+  ReturnMapResult rm;
   if (q_trial > st.sigma_y_static) {
-    const JohnsonCookParams& jc = m.strength;
-    scale = keep * jc_thermal_factor(jc, sw.thermal_softening, st.T);
-    const double hard0 = jc_hardening(jc, st.eps_p);
-    const ReturnMapResult rm = johnson_cook_return(jc, sw.rate_hardening, q_trial, G_d, st.eps_p,
-                                                   dt, scale, hard0, st.eps_dot_p * dt);
+    rm = johnson_cook_return(m.strength, sw.rate_hardening, q_trial, G_d, st.eps_p, dt, scale,
+                             st.hardening, st.eps_dot_p * dt);
     dp = rm.delta_eps_p;
-    hard_rate = rm.hard_rate;
     result.iterations = rm.iterations;
     result.converged = rm.converged;
     // Radial scaling of the trial deviator onto the yield surface.
@@ -146,10 +146,10 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   // Adiabatic heating: a fraction chi of the plastic work per unit current
   // volume, sigma_y dp, raises the temperature of mass rho = rho0 / J.
   if (dp > 0.0) {
-    const double rate_f = jc_rate_factor(m.strength, sw.rate_hardening, st.eps_dot_p);
-    const double hard = hard_rate / rate_f;  // A + B eps_p^n at the end of the step
-    st.sigma_y = scale * hard_rate;          // flow stress of this increment
-    const double w = st.sigma_y * dp;        // plastic work, J/m^3 of current volume
+    const double rate_f = rm.rate;      // 1 + C ln(eps_dot_p / eps_dot_0) of this increment
+    st.hardening = rm.hard;             // A + B eps_p^n at the end of the step
+    st.sigma_y = scale * rm.hard_rate;  // flow stress of this increment
+    const double w = st.sigma_y * dp;   // plastic work, J/m^3 of current volume
     st.plastic_work += J_new * w;
     const bool heated = sw.adiabatic_heating && w > 0.0;
     if (heated) st.T += mc.chi * w * J_new / (mc.rho0 * mc.c_p);
@@ -160,7 +160,8 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
         (heated || st.D != D_old)
             ? (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T)
             : scale;
-    st.sigma_y_static = end_scale * hard;
+    st.strength_scale = end_scale;
+    st.sigma_y_static = end_scale * st.hardening;
     st.sigma_y = st.sigma_y_static * rate_f;
   } else {
     st.sigma_y = st.sigma_y_static;  // no plastic rate: no rate hardening

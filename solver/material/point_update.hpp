@@ -23,7 +23,10 @@ struct MaterialConstants {
 
 MaterialConstants derive_constants(const Material& m);
 
-// State of one point; every field changes every step.
+// State of one point; every field changes every step. Make it with
+// initial_point_state and change it only through update_point: the fields
+// derived from eps_p, T and D (sigma_y_static, hardening, strength_scale) are
+// kept with them there.
 struct PointState {
   Mat3 s = Mat3::Zero();        // deviatoric Cauchy stress, Pa
   double p = 0.0;               // pressure, positive in compression, Pa
@@ -39,6 +42,10 @@ struct PointState {
   double sigma_y_static = 0.0;  // (1 - D)(A + B eps_p^n)(1 - T*^m): yield stress at zero
                                 // plastic rate; eps_p, T and D change only in plastic steps,
                                 // so an elastic step needs no Johnson-Cook evaluation, Pa
+  double hardening = 0.0;       // A + B eps_p^n, Pa; with strength_scale, a cache kept by
+                                // update_point (eps_p, T, D change only there) so that a
+                                // plastic step starts without evaluating pow
+  double strength_scale = 1.0;  // (1 - D)(1 - T*^m), -; sigma_y_static = scale * hardening
   double sigma_y_peak = 0.0;    // largest sigma_y seen (rate-dependent), Pa
   double plastic_work = 0.0;    // plastic work per unit reference volume, J/m^3
 

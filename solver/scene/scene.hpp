@@ -11,6 +11,7 @@
 
 #include "solver/adhesion/cohesive_law.hpp"
 #include "solver/common/types.hpp"
+#include "solver/contact/contact_types.hpp"
 #include "solver/material/material.hpp"
 
 namespace splat {
@@ -79,13 +80,21 @@ struct BoundarySpec {
   Vec3 velocity = Vec3::Zero();  // m/s, for type velocity
 };
 
-enum class InteractionType { rigid_wall };
+enum class InteractionType { rigid_wall, contact };
 
 struct InteractionSpec {
   InteractionType type = InteractionType::rigid_wall;
+  // rigid-wall
   std::vector<std::string> bodies;  // empty = all bodies
   Vec3 point = Vec3::Zero();        // a point of the wall plane, m
   Vec3 normal = Vec3(0, 0, 1);      // unit normal pointing into the allowed side, -
+  // contact: slave nodes of `slave` against the boundary faces of `master`
+  std::string master, slave;
+  ContactMethod method = ContactMethod::lagrange;
+  double penalty_stiffness = 0.0;  // Pa/m; 0 = 0.1 K_min / h_min (see model_builder)
+  double friction = 0.0;           // Coulomb coefficient, -
+  ContactSolverKind solver = ContactSolverKind::pgs;
+  bool two_pass = false;  // also master nodes on slave faces
 };
 
 struct TimeSpec {
@@ -117,10 +126,23 @@ struct TwoMassSpec {
   AdhesionParams adhesion;
 };
 
+// What a particle_impact block asked for and the model it expanded into
+// (solver/input/impact_scene.hpp); the verdict of an impact run reads it.
+struct ImpactSpec {
+  std::string particle = "particle";  // body name
+  std::string substrate;              // body name; empty = rigid wall
+  double velocity = 0.0;              // impact speed, m/s
+  double angle = 0.0;                 // from the substrate normal, deg
+  bool adaptive_end = true;           // stop once the outcome is decided
+  std::string model;                  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full
+  std::string why;                    // why that model, for people
+};
+
 struct Scene {
   std::string name;
   std::string description;
   std::optional<TwoMassSpec> two_mass;  // set: a two-mass scene, no bodies
+  std::optional<ImpactSpec> impact;     // set: expanded from a particle_impact block
   std::vector<BodySpec> bodies;
   std::vector<BoundarySpec> boundaries;
   std::vector<InteractionSpec> interactions;

@@ -372,6 +372,45 @@ TEST(SceneIo, interaction_with_unknown_body_and_zero_normal) {
   expect_violation(doc, "/interactions/0/normal", "must be non-zero");
 }
 
+TEST(SceneIo, contact_interaction) {
+  json doc = hex_scene();
+  doc["interactions"].push_back(
+      {{"type", "contact"}, {"master", "substrate"}, {"slave", "particle"}, {"friction", 0.2}});
+  const LoadedScene loaded = read_scene(doc);
+  ASSERT_EQ(loaded.scene.interactions.size(), 2u);
+  const InteractionSpec& c = loaded.scene.interactions[1];
+  EXPECT_EQ(c.type, InteractionType::contact);
+  EXPECT_EQ(c.master, "substrate");
+  EXPECT_EQ(c.slave, "particle");
+  EXPECT_EQ(c.method, ContactMethod::lagrange);
+  EXPECT_EQ(c.solver, ContactSolverKind::pgs);
+  EXPECT_EQ(c.friction, 0.2);
+  // The resolved document reads back into the same interaction.
+  const Scene again = scene_from_json(loaded.resolved);
+  EXPECT_EQ(again.interactions[1].master, "substrate");
+  EXPECT_EQ(again.interactions[1].friction, 0.2);
+  EXPECT_EQ(again.interactions[1].method, ContactMethod::lagrange);
+}
+
+TEST(SceneIo, contact_errors_name_their_field) {
+  json doc = hex_scene();
+  doc["interactions"] = {{{"type", "contact"}, {"master", "plate"}, {"slave", "particle"}}};
+  expect_violation(doc, "/interactions/0/master", "no body named \"plate\"");
+  doc["interactions"][0]["master"] = "particle";
+  expect_violation(doc, "/interactions/0/slave", "must differ from master");
+  doc["interactions"][0]["master"] = "substrate";
+  doc["interactions"][0]["friction"] = -0.1;
+  expect_violation(doc, "/interactions/0/friction", "must be >= 0");
+  doc["interactions"][0]["friction"] = 0.1;
+  doc["interactions"][0]["solver"] = "active-set";
+  expect_violation(doc, "/interactions/0/solver", "frictionless");
+  doc["interactions"][0]["solver"] = "pgs";
+  doc["interactions"][0]["penalty_stiffness"] = 1e15;
+  expect_violation(doc, "/interactions/0/penalty_stiffness", "only with method");
+  doc["interactions"][0]["point"] = {0, 0, 0};
+  expect_violation(doc, "/interactions/0/point", "");
+}
+
 TEST(SceneIo, symmetry_on_the_curved_surface) {
   json doc = hex_scene();
   doc["boundary_conditions"][2]["on"] = "curved";

@@ -1,0 +1,68 @@
+// splat windows --db FILE [--campaign ID] [--format table|json|csv]
+// Prints the deposition windows stored for a campaign (default: the latest):
+// per parameter set the critical and maximum velocity with the bracket of
+// each edge, every sticking interval, and the jobs that are neither stick
+// nor rebound. JSON rows carry `params`, `critical_velocity`,
+// `maximum_velocity` (null where the window does not close within the swept
+// range), `critical_bracket`, `maximum_bracket` and `intervals`.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "app/commands.hpp"
+#include "app/window_table.hpp"
+#include "campaign/manager.hpp"
+#include "solver/input/schema.hpp"
+
+namespace splat::app {
+
+namespace {
+
+struct WindowsOptions {
+  std::string db = "splat.db";
+  long long campaign = 0;
+  std::string format = "table";
+};
+
+int run_windows(const WindowsOptions& o) {
+  if (!std::filesystem::exists(o.db)) {
+    throw InputError(std::vector<SchemaViolation>{{"--db", "no store '" + o.db + "'"}});
+  }
+  campaign::Store store(o.db);
+  const auto all = store.campaigns();
+  if (all.empty())
+    throw InputError(std::vector<SchemaViolation>{{"--db", "the store holds no campaign"}});
+  std::int64_t id = o.campaign ? o.campaign : all.back().id;
+  const auto c = store.campaign(id);
+  if (!c)
+    throw InputError(std::vector<SchemaViolation>{
+        {"--campaign", "no campaign " + std::to_string(id) + " in the store"}});
+  std::vector<campaign::WindowRecord> windows = store.windows(id);
+  if (windows.empty()) windows = campaign::compute_windows(store, id);  // e.g. a killed sweep
+  if (o.format == "json") {
+    std::printf("%s\n", windows_json(windows).dump(2).c_str());
+  } else if (o.format == "csv") {
+    print_windows_csv(stdout, windows);
+  } else {
+    std::printf("campaign %lld '%s' (%s): %s\n", static_cast<long long>(id), c->name.c_str(),
+                campaign::to_string(c->state), counts_text(store.job_counts(id)).c_str());
+    print_windows_table(stdout, windows);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void register_windows(CLI::App& app, CommandTable& commands) {
+  auto o = std::make_shared<WindowsOptions>();
+  CLI::App* sub = app.add_subcommand("windows", "Print the deposition windows of a campaign");
+  sub->add_option("--db", o->db, "SQLite store")->capture_default_str();
+  sub->add_option("--campaign", o->campaign, "Campaign id (default: the latest)");
+  sub->add_option("--format", o->format, "table, json or csv")
+      ->check(CLI::IsMember({"table", "json", "csv"}))
+      ->capture_default_str();
+  commands.emplace_back(sub, [o] { return run_windows(*o); });
+}
+
+}  // namespace splat::app

@@ -1,0 +1,27 @@
+// What the end of one job's child process means for the job (shared by the
+// local and Slurm executors; the table is in campaign/README.md).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "campaign/process.hpp"
+#include "campaign/spec.hpp"
+#include "campaign/store.hpp"
+
+namespace splat::campaign {
+
+struct JobEnd {
+  JobState state = JobState::failed;
+  std::string reason;
+  bool retry = false;  // a transient failure with retries left: queue it again
+  std::optional<ResultRecord> result;
+  std::optional<int> threads;
+};
+
+// `dir` holds the job's stdout.json and stderr.txt.
+JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::filesystem::path& dir,
+                 const JobOptions& opts);
+
+}  // namespace splat::campaign

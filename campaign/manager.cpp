@@ -1,0 +1,403 @@
+#include "campaign/manager.hpp"
+
+#include <csignal>
+#include <cstring>
+#include <deque>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "campaign/job_end.hpp"
+#include "campaign/process.hpp"
+#include "campaign/slurm.hpp"
+
+namespace splat::campaign {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr int k_exit_transient = 75;  // EX_TEMPFAIL (sysexits.h)
+constexpr int k_exit_bad_input = 2;
+
+std::string read_text(const std::filesystem::path& p, std::size_t max_bytes) {
+  std::ifstream f(p, std::ios::binary);
+  std::string s((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  if (s.size() > max_bytes) s = "..." + s.substr(s.size() - max_bytes);
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+std::string signal_name(int sig) {
+  const char* d = strsignal(sig);
+  return "signal " + std::to_string(sig) + (d ? std::string(" (") + d + ")" : std::string());
+}
+
+std::filesystem::path self_executable() {
+  return std::filesystem::read_symlink("/proc/self/exe");
+}
+
+}  // namespace
+
+JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::filesystem::path& dir,
+                 const JobOptions& opts) {
+  JobEnd e;
+  const auto err_tail = [&] { return read_text(dir / "stderr.txt", 400); };
+  switch (pr.end) {
+    case ProcessEnd::spawn_failed:
+      e.reason = "could not start: " + pr.error;
+      return e;
+    case ProcessEnd::timed_out:
+      e.state = JobState::timed_out;
+      e.reason = "stopped at the time limit of " + std::to_string(opts.time_limit) + " s";
+      return e;
+    case ProcessEnd::cancelled:
+      e.state = JobState::cancelled;
+      e.reason = "cancelled while running";
+      return e;
+    case ProcessEnd::signaled:
+      e.reason = "killed by " + signal_name(pr.signal);
+      return e;
+    case ProcessEnd::exited:
+      break;
+  }
+  if (pr.exit_code == k_exit_transient) {
+    e.retry = job.attempts <= opts.retries;
+    e.reason = "transient failure (exit code 75) on attempt " + std::to_string(job.attempts) +
+               (e.retry ? ", retrying" : ", no retries left") + ": " + err_tail();
+    return e;
+  }
+  if (pr.exit_code == k_exit_bad_input) {
+    e.reason = "bad input (exit code 2): " + err_tail();
+    return e;
+  }
+  if (pr.exit_code != 0 && pr.exit_code != 3) {
+    e.reason = "exit code " + std::to_string(pr.exit_code) + ": " + err_tail();
+    return e;
+  }
+  const std::string text = read_text(dir / "stdout.json", std::size_t(64) << 20);
+  json summary;
+  try {
+    summary = json::parse(text);
+  } catch (const json::exception&) {
+    e.reason = "exit code " + std::to_string(pr.exit_code) + " without a JSON summary on stdout";
+    return e;
+  }
+  if (!summary.is_object() || !summary.contains("outcome") || !summary["outcome"].is_string()) {
+    e.reason = "summary without an `outcome`";
+    return e;
+  }
+  ResultRecord r;
+  r.job_hash = job.hash;
+  r.outcome = summary["outcome"].get<std::string>();
+  r.reason = summary.value("reason", "");
+  r.summary = summary.dump();
+  if (summary.contains("output") && summary["output"].is_object()) {
+    const json& h = summary["output"].value("hdf5", json());
+    if (h.is_string()) r.hdf5_path = h.get<std::string>();
+  }
+  if (summary.contains("threads") && summary["threads"].is_number_integer()) {
+    e.threads = summary["threads"].get<int>();
+  }
+  // The job ran; its outcome says how the simulation ended. The solver's
+  // own limits (timed-out) and errors are recorded as such.
+  if (r.outcome == "timed-out") {
+    e.state = JobState::timed_out;
+  } else if (r.outcome == "error") {
+    e.state = JobState::failed;
+  } else {
+    e.state = JobState::succeeded;
+  }
+  e.reason = r.outcome + ": " + r.reason;
+  e.result = std::move(r);
+  return e;
+}
+
+
+Sample classify(const PointStatus& p) {
+  Sample s;
+  s.velocity = p.point.velocity;
+  if (p.state == JobState::succeeded && p.outcome) {
+    s.label = *p.outcome;
+    if (*p.outcome == "stick") s.verdict = Verdict::stick;
+    if (*p.outcome == "rebound") s.verdict = Verdict::rebound;
+  } else if (p.outcome) {
+    s.label = std::string(to_string(p.state)) + " (" + *p.outcome + ")";
+  } else {
+    s.label = to_string(p.state);
+  }
+  return s;
+}
+
+std::vector<WindowRecord> compute_windows(Store& store, std::int64_t campaign_id) {
+  std::map<std::string, std::pair<std::string, std::vector<Sample>>> sets;
+  for (const PointStatus& p : store.points(campaign_id)) {
+    auto& slot = sets[p.point.params_key];
+    slot.first = p.point.params;
+    slot.second.push_back(classify(p));
+  }
+  std::vector<WindowRecord> out;
+  for (auto& [key, set] : sets) {
+    const Window w = compute_window(std::move(set.second));
+    json doc = to_json(w);
+    doc["params"] = json::parse(set.first);
+    out.push_back(
+        {campaign_id, key, set.first, w.critical_velocity, w.maximum_velocity, doc.dump()});
+  }
+  return out;
+}
+
+SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptions& options) {
+  const SceneResolver resolve = options.resolver ? options.resolver : splat_scene_resolver();
+  const std::string version =
+      options.solver_version.empty() ? solver_version_string() : options.solver_version;
+  const std::filesystem::path program =
+      options.job_program.empty() ? self_executable() : options.job_program;
+  const std::filesystem::path jobs_dir =
+      options.jobs_dir.empty() ? std::filesystem::path(store.path().string() + ".jobs")
+                               : options.jobs_dir;
+  const std::string host = host_name();
+  const std::string owner = this_process_owner();
+  const int workers = std::max(1, options.workers);
+
+  SweepReport report;
+  CampaignRecord rec;
+  rec.name = spec.name;
+  rec.spec_hash = spec_hash(spec);
+  rec.spec = spec.document.dump();
+  rec.tags = json(spec.tags).dump();
+  rec.executor = spec.executor == ExecutorKind::slurm ? "slurm" : "local";
+  rec.priority = spec.priority;
+  const std::int64_t cid = store.open_campaign(rec);
+  report.campaign_id = cid;
+
+  auto to_new_points = [&](const std::vector<ExpandedJob>& jobs, const char* origin) {
+    std::vector<NewPoint> pts;
+    for (const ExpandedJob& j : jobs) {
+      pts.push_back({{j.params_key, j.params_key, j.velocity, j.hash, origin},
+                     canonical_text(j.scene),
+                     version});
+    }
+    return pts;
+  };
+  report.grid =
+      store.add_points(cid, to_new_points(expand(spec, resolve, version), "grid"), options.rerun);
+  report.orphans_requeued = store.recover_orphaned_jobs(host);
+
+  // Worker slots: the dispatcher (this thread) claims jobs and hands them
+  // over; each worker runs one child at a time and records its end.
+  std::mutex m;
+  std::condition_variable cv;
+  std::deque<JobRecord> work;
+  int active = 0;
+  bool closing = false;
+  std::atomic<bool> cancel_running{false};
+  std::atomic<int> started{0};
+  std::vector<std::string> worker_errors;
+
+  auto run_one = [&](const JobRecord& job) {
+    const std::filesystem::path dir = jobs_dir / job.hash;
+    std::filesystem::create_directories(dir / "out");
+    {
+      std::ofstream f(dir / "scene.json");
+      f << job.scene << "\n";
+    }
+    ProcessSpec ps;
+    ps.argv = {
+        program.string(),       "run",       (dir / "scene.json").string(),   "--json", "--out",
+        (dir / "out").string(), "--threads", std::to_string(spec.job.threads)};
+    ps.stdout_file = dir / "stdout.json";
+    ps.stderr_file = dir / "stderr.txt";
+    ps.time_limit = spec.job.time_limit;
+    ps.cancel = &cancel_running;
+    ++started;
+    const ProcessResult pr = run_process(ps);
+    JobEnd e = interpret(job, pr, dir, spec.job);
+    if (e.retry) {
+      store.requeue_job(job.hash, e.reason);
+    } else {
+      store.finish_job(job.hash, e.state, e.reason, pr.wall_seconds,
+                       e.threads ? e.threads : std::optional<int>(spec.job.threads), e.result);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 0; i < workers; ++i) {
+    pool.emplace_back([&] {
+      for (;;) {
+        JobRecord job;
+        {
+          std::unique_lock lock(m);
+          cv.wait(lock, [&] { return closing || !work.empty(); });
+          if (work.empty()) return;
+          job = std::move(work.front());
+          work.pop_front();
+        }
+        try {
+          run_one(job);
+        } catch (const std::exception& ex) {
+          // The job could not be run or recorded; say so on the job if the
+          // store still works, and never let it escape the worker.
+          try {
+            store.finish_job(job.hash, JobState::failed, std::string("manager error: ") + ex.what(),
+                             std::nullopt, std::nullopt, std::nullopt);
+          } catch (const std::exception& ex2) {
+            std::lock_guard lock(m);
+            worker_errors.push_back(ex2.what());
+          }
+        }
+        {
+          std::lock_guard lock(m);
+          --active;
+        }
+        cv.notify_all();
+      }
+    });
+  }
+
+  Progress progress;
+  progress.campaign_id = cid;
+  auto report_progress = [&] {
+    if (!options.on_progress) return;
+    progress.counts = store.job_counts(cid);
+    progress.refinement_jobs = store.refinement_points_count(cid);
+    options.on_progress(progress);
+  };
+  report_progress();
+
+  // After every job has ended: store the windows, then add a refinement
+  // round if an edge is still wider than the tolerance and budget is left.
+  auto refine_round = [&] {
+    std::vector<WindowRecord> windows = compute_windows(store, cid);
+    store.store_windows(cid, windows);
+    if (!spec.refinement) return false;
+    std::vector<ExpandedJob> extra;
+    int budget = spec.refinement->max_extra_jobs - store.refinement_points_count(cid);
+    std::map<std::string, std::vector<Sample>> samples;
+    for (const PointStatus& p : store.points(cid))
+      samples[p.point.params_key].push_back(classify(p));
+    for (const WindowRecord& w : windows) {
+      const Window win = compute_window(samples[w.params_key]);
+      for (double v : refinement_points(win, spec.refinement->tolerance)) {
+        if (budget <= 0) break;
+        extra.push_back(make_job(spec, json::parse(w.params), v, resolve, version));
+        --budget;
+      }
+    }
+    if (extra.empty()) return false;
+    store.add_points(cid, to_new_points(extra, "refine"), options.rerun);
+    ++progress.round;
+    report_progress();
+    return true;
+  };
+  auto cancel_requested = [&] {
+    if (options.interrupt && options.interrupt->load()) return true;
+    const auto c = store.campaign(cid);
+    return c && c->state == CampaignState::cancelling;
+  };
+
+  bool cancelled = false;
+  const bool use_slurm = options.executor ? *options.executor == ExecutorKind::slurm
+                                          : spec.executor == ExecutorKind::slurm;
+  if (use_slurm) {
+    SlurmRound round{store, cid, spec, program, jobs_dir, options.slurm, owner, {}, {}};
+    round.cancel_requested = cancel_requested;
+    round.on_job_end = [&] { report_progress(); };
+    for (;;) {
+      const SlurmRoundResult rr = run_slurm_round(round);
+      started += rr.jobs_submitted;
+      if (rr.cancelled) {
+        cancelled = true;
+        break;
+      }
+      if (store.job_counts(cid).queued > 0) continue;  // transient failures to retry
+      if (!refine_round()) break;
+    }
+  }
+  auto last_poll = std::chrono::steady_clock::now();
+  while (!use_slurm) {
+    bool cancel_now = options.interrupt && options.interrupt->load();
+    const auto now = std::chrono::steady_clock::now();
+    if (!cancel_now &&
+        std::chrono::duration<double>(now - last_poll).count() >= options.poll_seconds) {
+      last_poll = now;
+      cancel_now = cancel_requested();
+    }
+    if (cancel_now) {
+      cancelled = true;
+      break;
+    }
+    // Fill free slots.
+    int free_slots = 0;
+    {
+      std::lock_guard lock(m);
+      free_slots = workers - active;
+    }
+    for (; free_slots > 0; --free_slots) {
+      std::optional<JobRecord> job = store.claim_next_job(cid, owner, host);
+      if (!job) break;
+      {
+        std::lock_guard lock(m);
+        work.push_back(std::move(*job));
+        ++active;
+      }
+      cv.notify_all();
+    }
+    int running_here = 0;
+    {
+      std::lock_guard lock(m);
+      running_here = active;
+    }
+    if (running_here == 0) {
+      const JobCounts counts = store.job_counts(cid);
+      if (counts.queued > 0) continue;  // claimable now
+      if (counts.running > 0) {
+        // Shared jobs another manager is running: wait for them.
+        std::this_thread::sleep_for(std::chrono::duration<double>(options.poll_seconds));
+        continue;
+      }
+      if (!refine_round()) break;
+      continue;
+    }
+    {
+      std::unique_lock lock(m);
+      const int before = active;
+      cv.wait_for(lock, std::chrono::duration<double>(options.poll_seconds),
+                  [&] { return active < before; });
+    }
+    report_progress();
+  }
+
+  if (cancelled) {
+    // Queued jobs never start; running ones are stopped and recorded cancelled.
+    store.cancel_queued_jobs(cid, "campaign cancelled before the job started");
+    cancel_running = true;
+    std::lock_guard lock(m);
+    for (const JobRecord& j : work) {
+      store.finish_job(j.hash, JobState::cancelled, "campaign cancelled before the job started",
+                       std::nullopt, std::nullopt, std::nullopt);
+    }
+    active -= static_cast<int>(work.size());
+    work.clear();
+  }
+  {
+    std::lock_guard lock(m);
+    closing = true;
+  }
+  cv.notify_all();
+  for (std::thread& t : pool) t.join();
+
+  report.windows = compute_windows(store, cid);
+  store.store_windows(cid, report.windows);
+  report.state = cancelled ? CampaignState::cancelled : CampaignState::finished;
+  store.set_campaign_state(cid, report.state);
+  report.counts = store.job_counts(cid);
+  report.refinement_jobs = store.refinement_points_count(cid);
+  report.jobs_started = started.load();
+  report_progress();
+  return report;
+}
+
+}  // namespace splat::campaign

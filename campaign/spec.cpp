@@ -1,0 +1,240 @@
+#include "campaign/spec.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "campaign/sha256.hpp"
+#include "solver/build_info.hpp"
+#include "solver/input/scene_io.hpp"
+#include "solver/input/schema.hpp"
+
+namespace splat::campaign {
+
+using nlohmann::json;
+
+namespace {
+
+struct NamedAxis {
+  const char* key;
+  const char* two_mass_pointer;  // default when the base scene is a two-mass scene
+  const char* unit;
+};
+
+// The parameter axes the spec names, in expansion order.
+constexpr NamedAxis k_named_axes[] = {
+    {"G_c", "/two_mass/adhesion/G_c", "J/m^2"},
+    {"sigma_c", "/two_mass/adhesion/sigma_c", "Pa"},
+    {"yield_drop_percent", "/two_mass/adhesion/activation/drop_percent", "%"},
+    {"D_adh_max", "/two_mass/adhesion/D_adh_max", "-"},
+};
+
+std::vector<double> velocity_values(const json& v) {
+  std::vector<double> out;
+  if (v.contains("values")) {
+    for (const json& x : v.at("values")) out.push_back(x.get<double>());
+    return out;
+  }
+  const json& r = v.at("range");
+  const double from = r.at("from").get<double>();
+  const double to = r.at("to").get<double>();
+  const double step = r.at("step").get<double>();
+  // from + i*step (not repeated addition, which drifts); `to` is included
+  // when it is on the grid up to rounding.
+  for (long i = 0;; ++i) {
+    const double x = from + static_cast<double>(i) * step;
+    if (x > to + 1e-9 * step) break;
+    out.push_back(x);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string canonical_text(const json& doc) {
+  return doc.dump();
+}
+
+std::string solver_version_string() {
+  return std::string(splat::version()) + "+" + std::string(splat::git_commit());
+}
+
+SceneResolver splat_scene_resolver() {
+  return [](const json& scene, const std::filesystem::path& base_dir) {
+    return splat::resolved_scene_json(scene, base_dir);
+  };
+}
+
+CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_dir) {
+  validate_or_throw("campaign", doc);
+  CampaignSpec s;
+  s.name = doc.at("name").get<std::string>();
+  s.description = doc.value("description", "");
+  if (doc.contains("tags")) s.tags = doc.at("tags").get<std::vector<std::string>>();
+
+  std::vector<SchemaViolation> problems;
+  const json& base = doc.at("base_scene");
+  s.base_dir = base_dir;
+  if (base.is_string()) {
+    std::filesystem::path p = base.get<std::string>();
+    if (p.is_relative()) p = base_dir / p;
+    try {
+      s.base_scene = read_json_file(p);
+      s.base_dir = p.parent_path();
+    } catch (const InputError& e) {
+      for (const SchemaViolation& v : e.violations()) {
+        problems.push_back({"/base_scene", v.message});
+      }
+    }
+  } else {
+    s.base_scene = base;
+  }
+  const bool two_mass = s.base_scene.is_object() && s.base_scene.contains("two_mass");
+
+  auto pointer_of = [&](const json& axis, const std::string& where,
+                        const char* two_mass_default) -> std::string {
+    if (axis.contains("pointer")) return axis.at("pointer").get<std::string>();
+    if (two_mass && two_mass_default) return two_mass_default;
+    problems.push_back({where + "/pointer", "required unless the base scene has a two_mass block"});
+    return {};
+  };
+
+  const json& v = doc.at("velocity");
+  s.velocity_pointer = pointer_of(v, "/velocity", "/two_mass/V0");
+  s.velocities = velocity_values(v);
+  s.velocity_scale = v.value("scale", 1.0);
+  if (s.velocities.empty()) {
+    problems.push_back({"/velocity/range", "must contain at least one speed (from <= to)"});
+  }
+
+  std::set<std::string> pointers{s.velocity_pointer};
+  auto check_unique = [&](const std::string& pointer, const std::string& where) {
+    if (!pointer.empty() && !pointers.insert(pointer).second) {
+      problems.push_back({where + "/pointer", "pointer '" + pointer + "' is set by another axis"});
+    }
+  };
+  for (const NamedAxis& n : k_named_axes) {
+    if (!doc.contains(n.key)) continue;
+    const json& a = doc.at(n.key);
+    const std::string where = std::string("/") + n.key;
+    ParameterAxis axis{n.key, pointer_of(a, where, n.two_mass_pointer), n.unit,
+                       a.at("values").get<std::vector<json>>(), false};
+    check_unique(axis.pointer, where);
+    s.axes.push_back(std::move(axis));
+  }
+  if (doc.contains("fields")) {
+    const json& fields = doc.at("fields");
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      const json& f = fields[i];
+      const std::string where = "/fields/" + std::to_string(i);
+      ParameterAxis axis{f.at("pointer").get<std::string>(), f.at("pointer").get<std::string>(),
+                         f.at("unit").get<std::string>(), f.at("values").get<std::vector<json>>(),
+                         true};
+      check_unique(axis.pointer, where);
+      s.axes.push_back(std::move(axis));
+    }
+  }
+  // Each pointer must name a field the base scene can hold: its parent exists.
+  if (s.base_scene.is_object()) {
+    auto check_parent = [&](const std::string& pointer, const std::string& where) {
+      if (pointer.empty()) return;
+      const json::json_pointer p(pointer);
+      if (!s.base_scene.contains(p.parent_pointer())) {
+        problems.push_back({where + "/pointer", "the base scene has no '" +
+                                                    p.parent_pointer().to_string() + "' to hold '" +
+                                                    pointer + "'"});
+      }
+    };
+    check_parent(s.velocity_pointer, "/velocity");
+    std::size_t field = 0;
+    for (const ParameterAxis& a : s.axes) {
+      const std::string where = a.is_field ? "/fields/" + std::to_string(field++) : "/" + a.name;
+      check_parent(a.pointer, where);
+    }
+  }
+
+  if (doc.contains("refinement")) {
+    const json& r = doc.at("refinement");
+    s.refinement =
+        RefinementOptions{r.at("tolerance").get<double>(), r.value("max_extra_jobs", 100)};
+  }
+  if (doc.contains("job")) {
+    const json& j = doc.at("job");
+    s.job.time_limit = j.value("time_limit", 3600.0);
+    s.job.retries = j.value("retries", 1);
+    s.job.threads = j.value("threads", 1);
+  }
+  s.priority = doc.value("priority", 0);
+  s.executor =
+      doc.value("executor", "local") == "slurm" ? ExecutorKind::slurm : ExecutorKind::local;
+  if (!problems.empty()) throw InputError(std::move(problems));
+  s.document = doc;
+  s.document["base_scene"] = s.base_scene;
+  return s;
+}
+
+CampaignSpec load_campaign(const std::filesystem::path& file) {
+  return read_campaign(read_json_file(file), file.parent_path());
+}
+
+std::vector<json> parameter_sets(const CampaignSpec& spec) {
+  std::vector<json> sets{json::object()};
+  for (const ParameterAxis& a : spec.axes) {
+    std::vector<json> next;
+    for (const json& partial : sets) {
+      for (const json& value : a.values) {
+        json p = partial;
+        p[a.name] = value;
+        next.push_back(std::move(p));
+      }
+    }
+    sets = std::move(next);
+  }
+  return sets;
+}
+
+ExpandedJob make_job(const CampaignSpec& spec, const json& params, double velocity,
+                     const SceneResolver& resolve, const std::string& solver_version) {
+  json scene = spec.base_scene;
+  scene[json::json_pointer(spec.velocity_pointer)] = spec.velocity_scale * velocity;
+  for (const ParameterAxis& a : spec.axes) {
+    scene[json::json_pointer(a.pointer)] = params.at(a.name);
+  }
+  ExpandedJob job;
+  try {
+    job.scene = resolve(scene, spec.base_dir);
+  } catch (const InputError& e) {
+    // The scene pointers are inside the job's scene: say which job.
+    std::vector<SchemaViolation> v;
+    for (const SchemaViolation& x : e.violations()) {
+      v.push_back({"/base_scene" + x.pointer, x.message + " (job at " + std::to_string(velocity) +
+                                                  " m/s, parameters " + canonical_text(params) +
+                                                  ")"});
+    }
+    throw InputError(std::move(v));
+  }
+  job.params = params;
+  job.params_key = canonical_text(params);
+  job.velocity = velocity;
+  job.hash = sha256_hex(canonical_text(job.scene) + "\n" + solver_version);
+  return job;
+}
+
+std::vector<ExpandedJob> expand(const CampaignSpec& spec, const SceneResolver& resolve,
+                                const std::string& solver_version) {
+  std::vector<ExpandedJob> jobs;
+  std::set<std::pair<std::string, double>> seen;
+  for (const json& params : parameter_sets(spec)) {
+    const std::string key = canonical_text(params);
+    for (double v : spec.velocities) {
+      if (!seen.insert({key, v}).second) continue;
+      jobs.push_back(make_job(spec, params, v, resolve, solver_version));
+    }
+  }
+  return jobs;
+}
+
+std::string spec_hash(const CampaignSpec& spec) {
+  return sha256_hex(canonical_text(spec.document));
+}
+
+}  // namespace splat::campaign

@@ -1,0 +1,182 @@
+#include "solver/contact/contact_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace splat {
+
+ContactSurface make_contact_surface(DetectionKind kind, std::vector<std::array<int, 4>> faces) {
+  ContactSurface s;
+  s.kind = kind;
+  s.faces = std::move(faces);
+  const int npf = s.nodes_per_face();
+  for (const auto& f : s.faces) s.nodes.insert(s.nodes.end(), f.begin(), f.begin() + npf);
+  std::sort(s.nodes.begin(), s.nodes.end());
+  s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
+  s.node_face_offsets.assign(s.nodes.size() + 1, 0);
+  auto index_of = [&](int node) {
+    return static_cast<int>(std::lower_bound(s.nodes.begin(), s.nodes.end(), node) -
+                            s.nodes.begin());
+  };
+  for (const auto& f : s.faces) {
+    for (int k = 0; k < npf; ++k) ++s.node_face_offsets[index_of(f[k]) + 1];
+  }
+  for (std::size_t k = 0; k < s.nodes.size(); ++k) {
+    s.node_face_offsets[k + 1] += s.node_face_offsets[k];
+  }
+  s.node_face_entries.resize(s.node_face_offsets.back());
+  std::vector<int> fill(s.node_face_offsets.begin(), s.node_face_offsets.end() - 1);
+  for (std::size_t fi = 0; fi < s.faces.size(); ++fi) {
+    for (int k = 0; k < npf; ++k) {
+      s.node_face_entries[fill[index_of(s.faces[fi][k])]++] = static_cast<int>(fi);
+    }
+  }
+  return s;
+}
+
+namespace {
+
+std::array<Vec3, 4> face_points(const ContactSurface& s, int f, const std::vector<Vec3>& x) {
+  const auto& ids = s.faces[f];
+  if (s.kind == DetectionKind::node_on_segment) return {x[ids[0]], x[ids[1]], x[ids[1]], x[ids[1]]};
+  return {x[ids[0]], x[ids[1]], x[ids[2]], x[ids[3]]};
+}
+
+PairGeometry project(const ContactSurface& s, int f, const Vec3& p, const std::vector<Vec3>& x) {
+  const auto pts = face_points(s, f, x);
+  if (s.kind == DetectionKind::node_on_segment) return project_on_segment(p, pts[0], pts[1]);
+  return project_on_quad(p, pts);
+}
+
+// Whether candidate a is better than b for the same slave node: a projection
+// inside the face first, then the smaller |gap|, then the lower face index
+// (so that the choice does not depend on the order faces are tested in).
+bool better(const DetectedPair& a, const DetectedPair& b) {
+  const bool ina = a.geometry.distance_outside <= 1e-9;
+  const bool inb = b.geometry.distance_outside <= 1e-9;
+  if (ina != inb) return ina;
+  const double ga = std::abs(a.geometry.gap), gb = std::abs(b.geometry.gap);
+  if (ga != gb) return ga < gb;
+  return a.face < b.face;
+}
+
+// Tests slave node k against face f and keeps the better pair in `best`.
+void consider(const ContactSurface& master, int f, int k, const Vec3& p, const std::vector<Vec3>& x,
+              const SearchSettings& st, double size, DetectedPair& best, bool& found) {
+  DetectedPair c;
+  c.slave = k;
+  c.face = f;
+  c.geometry = project(master, f, p, x);
+  if (!c.geometry.valid) return;
+  if (c.geometry.distance_outside > st.outside_tolerance) return;
+  if (c.geometry.gap > st.search_margin * size || c.geometry.gap < -st.capture_depth * size) return;
+  if (!found || better(c, best)) {
+    best = c;
+    found = true;
+  }
+}
+
+}  // namespace
+
+double face_size(const ContactSurface& s, int f, const std::vector<Vec3>& x) {
+  const auto pts = face_points(s, f, x);
+  if (s.kind == DetectionKind::node_on_segment) return (pts[1] - pts[0]).norm();
+  return std::sqrt(quad_area(pts));
+}
+
+double slave_node_area(const ContactSurface& s, int k, const std::vector<Vec3>& x) {
+  double area = 0.0;
+  for (int e = s.node_face_offsets[k]; e < s.node_face_offsets[k + 1]; ++e) {
+    const auto pts = face_points(s, s.node_face_entries[e], x);
+    if (s.kind == DetectionKind::node_on_segment) {
+      area += 0.5 * (pts[1] - pts[0]).norm();
+    } else {
+      area += 0.25 * quad_area(pts);
+    }
+  }
+  if (s.kind == DetectionKind::node_on_segment) area *= x[s.nodes[k]].x();  // r, per radian
+  return area;
+}
+
+std::vector<DetectedPair> find_pairs_all_pairs(const ContactSurface& master,
+                                               const ContactSurface& slave,
+                                               const std::vector<Vec3>& x,
+                                               const SearchSettings& st) {
+  std::vector<DetectedPair> out;
+  std::vector<double> sizes(master.faces.size());
+  for (std::size_t f = 0; f < sizes.size(); ++f)
+    sizes[f] = face_size(master, static_cast<int>(f), x);
+  for (std::size_t k = 0; k < slave.nodes.size(); ++k) {
+    const Vec3& p = x[slave.nodes[k]];
+    DetectedPair best;
+    bool found = false;
+    for (std::size_t f = 0; f < master.faces.size(); ++f) {
+      consider(master, static_cast<int>(f), static_cast<int>(k), p, x, st, sizes[f], best, found);
+    }
+    if (found) out.push_back(best);
+  }
+  return out;
+}
+
+std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
+                                             const ContactSurface& slave,
+                                             const std::vector<Vec3>& x, const SearchSettings& st) {
+  std::vector<DetectedPair> out;
+  const std::size_t nf = master.faces.size();
+  if (nf == 0 || slave.nodes.empty()) return out;
+  const int npf = master.nodes_per_face();
+  // Face bounding boxes grown by the capture range (the projection tolerance
+  // included), so a slave node within range of a face lies inside its box.
+  std::vector<Vec3> lo(nf), hi(nf);
+  std::vector<double> sizes(nf);
+  double cell = 0.0;
+  const double reach =
+      std::max(st.capture_depth, st.search_margin) + 2.0 * st.outside_tolerance + 1e-6;
+  for (std::size_t f = 0; f < nf; ++f) {
+    sizes[f] = face_size(master, static_cast<int>(f), x);
+    Vec3 a = x[master.faces[f][0]], b = a;
+    for (int k = 1; k < npf; ++k) {
+      a = a.cwiseMin(x[master.faces[f][k]]);
+      b = b.cwiseMax(x[master.faces[f][k]]);
+    }
+    // The projection tolerance is in local units: a fraction of the largest edge.
+    const double grow = reach * std::max(sizes[f], (b - a).maxCoeff());
+    lo[f] = a - Vec3::Constant(grow);
+    hi[f] = b + Vec3::Constant(grow);
+    cell = std::max(cell, (hi[f] - lo[f]).maxCoeff());
+  }
+  if (!(cell > 0.0) || !std::isfinite(cell)) return find_pairs_all_pairs(master, slave, x, st);
+  const bool planar = master.kind == DetectionKind::node_on_segment;
+  auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
+  auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    constexpr std::int64_t off = 1 << 20, mask = (1 << 21) - 1;
+    return ((i + off) & mask) | (((j + off) & mask) << 21) | (((k + off) & mask) << 42);
+  };
+  std::unordered_map<std::int64_t, std::vector<int>> grid;
+  grid.reserve(2 * nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::int64_t i0 = cell_of(lo[f].x()), i1 = cell_of(hi[f].x());
+    const std::int64_t j0 = cell_of(lo[f].y()), j1 = cell_of(hi[f].y());
+    const std::int64_t k0 = planar ? 0 : cell_of(lo[f].z()), k1 = planar ? 0 : cell_of(hi[f].z());
+    for (std::int64_t i = i0; i <= i1; ++i)
+      for (std::int64_t j = j0; j <= j1; ++j)
+        for (std::int64_t k = k0; k <= k1; ++k) grid[key(i, j, k)].push_back(static_cast<int>(f));
+  }
+  for (std::size_t s = 0; s < slave.nodes.size(); ++s) {
+    const Vec3& p = x[slave.nodes[s]];
+    const auto it = grid.find(key(cell_of(p.x()), cell_of(p.y()), planar ? 0 : cell_of(p.z())));
+    if (it == grid.end()) continue;
+    DetectedPair best;
+    bool found = false;
+    for (int f : it->second) {
+      if ((p.array() < lo[f].array()).any() || (p.array() > hi[f].array()).any()) continue;
+      consider(master, f, static_cast<int>(s), p, x, st, sizes[f], best, found);
+    }
+    if (found) out.push_back(best);
+  }
+  return out;
+}
+
+}  // namespace splat

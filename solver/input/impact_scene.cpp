@@ -1,0 +1,252 @@
+#include "solver/input/impact_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "solver/input/material_io.hpp"
+#include "solver/input/schema.hpp"
+#include "solver/material/johnson_cook.hpp"
+
+namespace splat {
+namespace {
+
+using nlohmann::json;
+
+constexpr double k_pi = std::numbers::pi;
+constexpr double k_gap = 1e-3;             // initial gap / particle radius, -
+constexpr double k_grading_ratio = 1.15;   // substrate element growth per element, -
+constexpr double k_size_velocity = 250.0;  // m/s per extra particle radius of substrate
+constexpr double k_rigid_factor = 3.0;     // substrate yield / particle flow stress for rigid
+
+[[noreturn]] void fail(const std::string& pointer, const std::string& message) {
+  throw InputError({{pointer, message}});
+}
+
+Material resolve(const json& m, const std::string& pointer) {
+  try {
+    if (m.is_string()) return load_material(m.get<std::string>());
+    return material_from_json(m);
+  } catch (const InputError& e) {
+    std::vector<SchemaViolation> v = e.violations();
+    for (SchemaViolation& x : v) x.pointer = pointer + x.pointer;
+    throw InputError(std::move(v));
+  } catch (const std::exception& e) {
+    fail(pointer, e.what());
+  }
+}
+
+// Johnson-Cook flow stress at eps_p = 1, 1e7 /s and T_ref: the stress a
+// strongly deforming particle reaches in a cold-spray impact.
+double impact_flow_stress(const Material& m) {
+  const JohnsonCookParams& jc = m.strength;
+  const double rate = 1.0 + jc.C * std::log(std::max(1e7 / jc.eps_dot_0, 1.0));
+  return (jc.A + jc.B) * rate;
+}
+
+double effective_modulus(const Material& a, const Material& b) {
+  auto term = [](const Material& m) { return (1.0 - m.elastic.nu * m.elastic.nu) / m.elastic.E; };
+  return 1.0 / (term(a) + term(b));
+}
+
+// Hertz contact time of a sphere (radius R, mass M) on a half-space at speed
+// v (Johnson 1985, eq. 11.24): t = 2.87 (M^2 / (R E*^2 v))^(1/5).
+double hertz_time(double R, double M, double E_star, double v) {
+  return 2.87 * std::pow(M * M / (R * E_star * E_star * v), 0.2);
+}
+
+json switches(bool damage) {
+  return {{"damage", damage},
+          {"thermal_softening", true},
+          {"rate_hardening", true},
+          {"adiabatic_heating", true}};
+}
+
+json vec(double x, double y, double z) {
+  return json::array({x, y, z});
+}
+
+}  // namespace
+
+ExpandedImpact expand_particle_impact(const json& doc) {
+  const json& pi = doc.at("particle_impact");
+  const std::string base = "/particle_impact";
+  const json& particle = pi.at("particle");
+  const json substrate = pi.value("substrate", json::object());
+
+  const Material mp = resolve(particle.at("material"), base + "/particle/material");
+  const Material ms =
+      resolve(substrate.value("material", particle.at("material")), base + "/substrate/material");
+  const double R = particle.at("radius").get<double>();
+  const int n = particle.value("elements_across", 12);
+  const double h = R / n;
+  const double v = pi.at("velocity").get<double>();
+  const double angle = pi.value("angle", 0.0);  // degrees from the normal
+  const bool has_adhesion = pi.contains("adhesion");
+  const json adhesion = pi.value("adhesion", json::object());
+  const bool erosion = pi.value("erosion", false);
+  const bool adhesion_erosion =
+      has_adhesion && adhesion.contains("D_adh_max") && !adhesion.at("D_adh_max").is_null();
+  const bool damage = pi.value("damage", erosion || adhesion_erosion);
+  const std::string fidelity = pi.value("fidelity", "auto");
+  const std::string substrate_kind = substrate.value("type", "auto");
+
+  ExpandedImpact out;
+  ImpactModelChoice& c = out.choice;
+  std::vector<std::string> reasons;
+
+  // Fidelity.
+  if (fidelity == "auto") {
+    if (angle != 0.0) {
+      c.model = "fe-3d-full";
+      reasons.push_back("oblique impact (angle " + std::to_string(angle) +
+                        " deg): only a full 3D model represents it");
+    } else {
+      c.model = "fe-axisym";
+      reasons.push_back("normal impact: axisymmetric");
+    }
+  } else {
+    c.model = fidelity;
+    reasons.push_back("fidelity " + fidelity + " as asked");
+    if (angle != 0.0 && fidelity != "fe-3d-full") {
+      fail(base + "/fidelity",
+           "an oblique impact (angle != 0) needs fidelity fe-3d-full or auto, not " + fidelity);
+    }
+  }
+
+  // Substrate: deformable or rigid.
+  const double sigma_p = impact_flow_stress(mp);
+  if (substrate_kind == "rigid") {
+    c.rigid_substrate = true;
+    reasons.push_back("rigid substrate as asked");
+  } else if (substrate_kind == "auto" && !has_adhesion && c.model != "two-mass" &&
+             ms.strength.A >= k_rigid_factor * sigma_p) {
+    c.rigid_substrate = true;
+    reasons.push_back("rigid substrate: its yield stress " + std::to_string(ms.strength.A / 1e6) +
+                      " MPa is at least 3x the particle's flow stress " +
+                      std::to_string(sigma_p / 1e6) + " MPa, so it cannot yield");
+  }
+  if (c.rigid_substrate && has_adhesion) {
+    fail(base + "/substrate/type",
+         "adhesion needs a deformable substrate (a rigid wall carries no links)");
+  }
+  reasons.push_back(has_adhesion ? "adhesion on contact pairs"
+                                 : "no adhesion asked: plain contact");
+  if (!damage) reasons.push_back("no erosion or D_adh_max: damage off");
+
+  const double E_star = effective_modulus(mp, ms);
+  const double M = 4.0 / 3.0 * k_pi * R * R * R * mp.density;
+  const double t_hertz = v > 0.0 ? hertz_time(R, M, E_star, v) : 0.0;
+  const double t_max_default =
+      v > 0.0 ? 3.0 * std::max(t_hertz, std::min(R / v, 10.0 * t_hertz)) : 0.0;
+  const json& end = pi.value("end_time", json("adaptive"));
+  const double t_max = end.is_number() ? end.get<double>() : pi.value("max_time", t_max_default);
+  if (!(t_max > 0.0)) {
+    fail(base + "/velocity",
+         "must be > 0 (m/s) unless end_time is given: the impact never happens");
+  }
+
+  json scene = {{"name", doc.at("name")}, {"particle_impact", pi}};
+  if (doc.contains("description")) scene["description"] = doc.at("description");
+  if (doc.contains("output")) scene["output"] = doc.at("output");
+  json time = doc.value("time", json::object());
+  time["end_time"] = t_max;
+  scene["time"] = time;
+
+  if (c.model == "two-mass") {
+    // The crudest level: the particle as a rigid mass, the substrate as the
+    // rigid mass of a hemisphere of the particle's radius, joined over the
+    // Hertz contact area at v (a = sqrt(R delta_max)).
+    const double m_sub = 2.0 / 3.0 * k_pi * R * R * R * ms.density;
+    const double m_star = M * m_sub / (M + m_sub);
+    const double delta = std::pow(15.0 * m_star * v * v / (16.0 * E_star * std::sqrt(R)), 0.4);
+    const double a = std::min(std::sqrt(R * delta), R);
+    json two_mass = {{"M", M},
+                     {"m", m_sub},
+                     {"k", 0.0},
+                     {"V0", v},
+                     {"area", std::max(k_pi * a * a, 1e-30)},
+                     {"adhesion", has_adhesion ? adhesion : json{{"G_c", 0.0}}}};
+    scene["two_mass"] = two_mass;
+    scene["time"] = {{"end_time", 100.0 * std::max(t_max, 1e-12)}};
+    reasons.push_back("substrate as a rigid hemisphere of mass " + std::to_string(m_sub) +
+                      " kg, link area from the Hertz contact radius");
+    c.why = reasons.front();
+    for (std::size_t i = 1; i < reasons.size(); ++i) c.why += "; " + reasons[i];
+    scene["particle_impact"]["model"] = {{"name", c.model}, {"why", c.why}};
+    out.scene = std::move(scene);
+    return out;
+  }
+
+  const bool axi = c.model == "fe-axisym";
+  const bool quarter = c.model == "fe-3d-quarter";
+  const double rad = angle * k_pi / 180.0;
+  const double S = substrate.value("size", std::min(R * (4.0 + v / k_size_velocity), 12.0 * R));
+
+  json p = {
+      {"name", "particle"},
+      {"material", particle.at("material")},
+      {"geometry", {{"type", "sphere"}, {"radius", R}, {"centre", vec(0, 0, R * (1 + k_gap))}}},
+      {"discretization", {{"type", axi ? "fe-axisym" : "fe-hex"}, {"elements_across", n}}},
+      {"initial",
+       {{"velocity", vec(v * std::sin(rad), 0.0, -v * std::cos(rad))},
+        {"temperature", particle.value("temperature", mp.strength.T_ref)}}},
+      {"switches", switches(damage)},
+      {"erosion", {{"enabled", erosion}}}};
+  if (quarter) p["discretization"]["sector"] = "quarter";
+  json bodies = json::array({p});
+  json bcs = json::array();
+  json interactions = json::array();
+
+  if (c.rigid_substrate) {
+    interactions.push_back(
+        {{"type", "rigid-wall"}, {"point", vec(0, 0, 0)}, {"normal", vec(0, 0, 1)}});
+  } else {
+    json s = {{"name", "substrate"},
+              {"material", substrate.value("material", particle.at("material"))},
+              {"discretization",
+               {{"type", axi ? "fe-axisym" : "fe-hex"},
+                {"element_size", h},
+                {"grading", {{"focus", vec(0, 0, 0)}, {"ratio", k_grading_ratio}}}}},
+              {"initial", {{"temperature", substrate.value("temperature", ms.strength.T_ref)}}},
+              {"switches", switches(damage)},
+              {"erosion", {{"enabled", erosion}}}};
+    if (axi) {
+      s["geometry"] = {{"type", "rectangle"}, {"r_max", S}, {"z_min", -S}, {"z_max", 0.0}};
+      for (const char* on : {"outer", "bottom"})
+        bcs.push_back({{"body", "substrate"}, {"on", on}, {"type", "absorbing"}});
+    } else if (quarter) {
+      s["geometry"] = {{"type", "box"}, {"min", vec(0, 0, -S)}, {"max", vec(S, S, 0)}};
+      for (const char* on : {"x_max", "y_max", "z_min"})
+        bcs.push_back({{"body", "substrate"}, {"on", on}, {"type", "absorbing"}});
+      for (const char* body : {"particle", "substrate"})
+        for (const char* on : {"x_min", "y_min"})
+          bcs.push_back({{"body", body}, {"on", on}, {"type", "symmetry"}});
+    } else {
+      s["geometry"] = {{"type", "box"}, {"min", vec(-S, -S, -S)}, {"max", vec(S, S, 0)}};
+      for (const char* on : {"x_min", "x_max", "y_min", "y_max", "z_min"})
+        bcs.push_back({{"body", "substrate"}, {"on", on}, {"type", "absorbing"}});
+    }
+    bodies.push_back(s);
+    json contact = {{"type", "contact"},
+                    {"master", "substrate"},
+                    {"slave", "particle"},
+                    {"method", "lagrange"}};
+    if (has_adhesion) contact["adhesion"] = adhesion;
+    interactions.push_back(contact);
+  }
+  scene["bodies"] = bodies;
+  scene["boundary_conditions"] = bcs;
+  scene["interactions"] = interactions;
+
+  c.why = reasons.front();
+  for (std::size_t i = 1; i < reasons.size(); ++i) c.why += "; " + reasons[i];
+  scene["particle_impact"]["model"] = {
+      {"name", c.model}, {"rigid_substrate", c.rigid_substrate}, {"why", c.why}};
+  out.scene = std::move(scene);
+  return out;
+}
+
+}  // namespace splat

@@ -1,0 +1,52 @@
+// The cold-spray impact scene: a `particle_impact` block (schemas/scene.schema.json)
+// names a particle (material, radius, resolution), a substrate, the impact
+// velocity and angle and the adhesion law; expand_particle_impact turns it into
+// the bodies, boundary conditions, interactions and time control of an ordinary
+// scene, at the fidelity the block asks for or, with `auto`, the cheapest that
+// represents it:
+//   angle != 0                       -> fe-3d-full (an oblique impact has one
+//                                       symmetry plane at most)
+//   angle == 0                       -> fe-axisym
+//   substrate "rigid", or "auto" with no adhesion asked and a substrate yield
+//   stress A_s >= 3 sigma_p (sigma_p: the particle's Johnson-Cook flow stress at
+//   eps_p = 1, 1e7 /s, T_ref; 3 sigma_p bounds the contact pressure a
+//   flattening particle exerts, Tabor) -> rigid wall instead of a substrate body
+//   no adhesion block                -> plain contact, no adhesion work
+//   no D_adh_max and no erosion      -> damage switched off in both bodies
+// Geometry (scene coordinates, z up, impact point at the origin):
+//   particle: sphere of radius R, centre (0, 0, R (1 + 1e-3)), velocity
+//             v (sin a, 0, -cos a);
+//   substrate: z in [-S, 0], radius (axisymmetric) or half-width (3D) S, with
+//             S = R (4 + v / 250 m/s) capped at 12 R unless given; element size
+//             at the impact point equal to the particle's (R / elements_across),
+//             growing by 1.15 per element away from it; absorbing boundaries
+//             on the far faces (outer radius / sides and bottom).
+// The default maximum time is 3 max(t_H, min(R / v, 10 t_H)), with t_H the
+// Hertz contact time of the two elastic bodies at v (Johnson 1985, eq. 11.24);
+// the adaptive end-time rule of the impact run stops earlier once the outcome
+// is decided.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace splat {
+
+struct ImpactModelChoice {
+  std::string model;  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full
+  bool rigid_substrate = false;
+  std::string why;  // for people: what was chosen and the reason
+};
+
+struct ExpandedImpact {
+  nlohmann::json scene;  // a scene document with bodies (or two_mass); keeps the block
+  ImpactModelChoice choice;
+};
+
+// `doc` is a scene document with a `particle_impact` block and no bodies,
+// already valid against the scene schema. Throws InputError naming the field
+// when the block cannot be expanded (unknown material, adhesion asked on a
+// rigid substrate, ...).
+ExpandedImpact expand_particle_impact(const nlohmann::json& doc);
+
+}  // namespace splat

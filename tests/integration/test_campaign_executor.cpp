@@ -1,0 +1,322 @@
+// The local executor and manager with real child processes and a real SQLite
+// file. Jobs here are tests/fake_job (a stand-in program that sleeps,
+// crashes, hangs or prints a canned summary on command), so these tests are
+// about the executor, not physics: crashes and time limits recorded with
+// their reason while the other jobs finish, transient retries, cancellation,
+// kill -9 of the manager and resume with every job ending exactly once, and
+// cache reuse.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+
+#include "campaign/manager.hpp"
+
+namespace {
+
+using namespace splat::campaign;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() /
+           ("splat_exec_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+const SceneResolver identity = [](const json& scene, const fs::path&) { return scene; };
+
+// A campaign over fake jobs: one parameter set per entry of `fakes` (the
+// job's "fake" block), at each of `speeds`.
+CampaignSpec fake_campaign(const std::string& name, const std::vector<json>& fakes,
+                           const std::vector<double>& speeds, double time_limit = 30.0) {
+  json doc = {{"name", name},
+              {"base_scene", {{"name", "fake"}, {"V0", 0.0}, {"fake", json::object()}}},
+              {"velocity", {{"pointer", "/V0"}, {"values", speeds}}},
+              {"fields", {{{"pointer", "/fake"}, {"unit", "-"}, {"values", fakes}}}},
+              {"job", {{"time_limit", time_limit}, {"retries", 1}}}};
+  return read_campaign(doc);
+}
+
+ManagerOptions fake_options(int workers = 2) {
+  ManagerOptions o;
+  o.workers = workers;
+  o.job_program = SPLAT_FAKE_JOB;
+  o.resolver = identity;
+  o.solver_version = "fake-1";
+  o.poll_seconds = 0.02;
+  return o;
+}
+
+std::vector<std::string> lines_of(const fs::path& p) {
+  std::ifstream f(p);
+  std::vector<std::string> out;
+  for (std::string l; std::getline(f, l);) out.push_back(l);
+  return out;
+}
+
+// The state and reason of the job of each parameter set (single speed).
+std::map<std::string, JobRecord> jobs_by_fake(Store& s, std::int64_t cid) {
+  std::map<std::string, JobRecord> out;
+  for (const PointStatus& p : s.points(cid)) {
+    const json params = json::parse(p.point.params);
+    out[params.at("/fake").dump()] = *s.job(p.point.job_hash);
+  }
+  return out;
+}
+
+TEST(campaign_executor, crashes_timeouts_and_bad_output_are_recorded_while_others_finish) {
+  TempDir t;
+  Store store(t.path / "c.db");
+  const std::vector<json> fakes = {
+      json::object({{"threshold", 5}}),
+      json::object({{"segfault", true}}),
+      json::object({{"sleep", 30}}),
+      json::object({{"sleep", 30}, {"ignore_term", true}}),
+      json::object({{"garbage", true}}),
+      json::object({{"exit", 9}}),
+      json::object({{"exit", 2}}),
+      json::object({{"outcome", "unstable"}}),
+      json::object({{"transient_failures", 1}, {"threshold", 5}}),
+      json::object({{"transient_failures", 5}}),
+  };
+  const CampaignSpec spec = fake_campaign("crashes", fakes, {1.0}, 0.5);
+  const SweepReport r = run_sweep(store, spec, fake_options(3));
+  EXPECT_EQ(r.state, CampaignState::finished);
+  auto jobs = jobs_by_fake(store, r.campaign_id);
+  auto job = [&](const json& f) { return jobs.at(f.dump()); };
+
+  EXPECT_EQ(job(fakes[0]).state, JobState::succeeded);
+  EXPECT_EQ(store.result(job(fakes[0]).hash)->outcome, "stick");
+
+  EXPECT_EQ(job(fakes[1]).state, JobState::failed);
+  EXPECT_NE(job(fakes[1]).exit_reason.find("killed by signal 11"), std::string::npos)
+      << job(fakes[1]).exit_reason;
+  EXPECT_FALSE(store.result(job(fakes[1]).hash));
+
+  for (int i : {2, 3}) {  // the second ignores SIGTERM and needs SIGKILL
+    EXPECT_EQ(job(fakes[i]).state, JobState::timed_out) << i;
+    EXPECT_NE(job(fakes[i]).exit_reason.find("time limit of 0.5"), std::string::npos)
+        << job(fakes[i]).exit_reason;
+    EXPECT_LT(*job(fakes[i]).wall_seconds, 5.0) << i;
+  }
+  EXPECT_EQ(job(fakes[4]).state, JobState::failed);
+  EXPECT_NE(job(fakes[4]).exit_reason.find("without a JSON summary"), std::string::npos);
+  EXPECT_EQ(job(fakes[5]).state, JobState::failed);
+  EXPECT_NE(job(fakes[5]).exit_reason.find("exit code 9: fake_job: told to exit 9"),
+            std::string::npos)
+      << job(fakes[5]).exit_reason;
+  EXPECT_NE(job(fakes[6]).exit_reason.find("bad input (exit code 2)"), std::string::npos);
+  // A job that ran but ended unstable succeeded as a job; its outcome is kept.
+  EXPECT_EQ(job(fakes[7]).state, JobState::succeeded);
+  EXPECT_EQ(store.result(job(fakes[7]).hash)->outcome, "unstable");
+  // One transient failure, one retry allowed: succeeds on attempt 2.
+  EXPECT_EQ(job(fakes[8]).state, JobState::succeeded);
+  EXPECT_EQ(job(fakes[8]).attempts, 2);
+  // Five transient failures: fails after 1 + 1 attempts, saying why.
+  EXPECT_EQ(job(fakes[9]).state, JobState::failed);
+  EXPECT_EQ(job(fakes[9]).attempts, 2);
+  EXPECT_NE(job(fakes[9]).exit_reason.find("no retries left"), std::string::npos);
+
+  // The windows show the failures as neither stick nor rebound.
+  // Only the two jobs that stuck count; every other one is unclassified.
+  for (const WindowRecord& w : r.windows) {
+    const json doc = json::parse(w.window);
+    const json fake = json::parse(w.params).at("/fake");
+    const bool sticks = fake == fakes[0] || fake == fakes[8];
+    EXPECT_EQ(doc.at("sticks"), sticks ? 1 : 0) << fake;
+    EXPECT_EQ(doc.at("rebounds"), 0) << fake;
+    EXPECT_EQ(doc.at("unclassified").size(), sticks ? 0u : 1u) << fake;
+  }
+}
+
+TEST(campaign_executor, a_missing_job_program_fails_each_job_clearly) {
+  TempDir t;
+  Store store(t.path / "c.db");
+  ManagerOptions o = fake_options();
+  o.job_program = t.path / "no-such-program";
+  const SweepReport r = run_sweep(store, fake_campaign("missing", {json::object()}, {1.0, 2.0}), o);
+  EXPECT_EQ(r.counts.failed, 2);
+  for (const PointStatus& p : store.points(r.campaign_id)) {
+    EXPECT_NE(p.exit_reason.find("could not start: cannot execute"), std::string::npos)
+        << p.exit_reason;
+  }
+}
+
+TEST(campaign_executor, cancellation_stops_running_jobs_and_queued_ones_never_start) {
+  TempDir t;
+  const fs::path db = t.path / "c.db";
+  const fs::path log = t.path / "jobs.log";
+  Store store(db);
+  std::vector<double> speeds;
+  for (int i = 0; i < 10; ++i) speeds.push_back(i);
+  const CampaignSpec spec =
+      fake_campaign("cancel", {json::object({{"sleep", 30}, {"log", log.string()}})}, speeds);
+  // Someone else (another connection, as the API server would) cancels the
+  // campaign once its first jobs are running.
+  std::thread canceller([&] {
+    Store other(db);
+    for (int i = 0; i < 3000 && lines_of(log).size() < 2; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    other.request_cancel(other.campaigns().at(0).id);
+  });
+  const auto t0 = std::chrono::steady_clock::now();
+  const SweepReport r = run_sweep(store, spec, fake_options(2));
+  canceller.join();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(seconds, 20.0);
+  EXPECT_EQ(r.state, CampaignState::cancelled);
+  EXPECT_EQ(store.campaign(r.campaign_id)->state, CampaignState::cancelled);
+  EXPECT_EQ(r.counts.cancelled, 10);
+  EXPECT_EQ(r.counts.total(), 10);
+  EXPECT_EQ(r.jobs_started, 2);
+  EXPECT_EQ(lines_of(log).size(), 2u);  // only the two running jobs ever started
+  int stopped = 0;
+  for (const PointStatus& p : store.points(r.campaign_id)) {
+    stopped += p.exit_reason == "cancelled while running";
+  }
+  EXPECT_EQ(stopped, 2);
+}
+
+TEST(campaign_executor, interrupt_flag_cancels_like_a_request) {
+  TempDir t;
+  Store store(t.path / "c.db");
+  std::atomic<bool> interrupt{false};
+  ManagerOptions o = fake_options(1);
+  o.interrupt = &interrupt;
+  std::thread stopper([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    interrupt = true;
+  });
+  const SweepReport r =
+      run_sweep(store, fake_campaign("sigint", {json::object({{"sleep", 30}})}, {1, 2, 3}), o);
+  stopper.join();
+  EXPECT_EQ(r.state, CampaignState::cancelled);
+  EXPECT_EQ(r.counts.cancelled, 3);
+}
+
+TEST(campaign_executor, finished_jobs_are_reused_and_rerun_on_request) {
+  TempDir t;
+  Store store(t.path / "c.db");
+  const CampaignSpec spec =
+      fake_campaign("cache", {json::object({{"threshold", 2.5}})}, {1.0, 2.0, 3.0, 4.0});
+  SweepReport r = run_sweep(store, spec, fake_options());
+  EXPECT_EQ(r.jobs_started, 4);
+  EXPECT_EQ(r.counts.succeeded, 4);
+  // The same campaign again: nothing recomputed.
+  r = run_sweep(store, spec, fake_options());
+  EXPECT_EQ(r.jobs_started, 0);
+  EXPECT_EQ(r.counts.succeeded, 4);
+  // Another campaign sharing two of the jobs: only the new ones run.
+  const CampaignSpec other =
+      fake_campaign("cache2", {json::object({{"threshold", 2.5}})}, {3.0, 4.0, 5.0});
+  r = run_sweep(store, other, fake_options());
+  EXPECT_EQ(r.grid.jobs_reused, 2);
+  EXPECT_EQ(r.jobs_started, 1);
+  // A rerun recomputes everything.
+  ManagerOptions again = fake_options();
+  again.rerun = true;
+  r = run_sweep(store, spec, again);
+  EXPECT_EQ(r.jobs_started, 4);
+  EXPECT_EQ(r.windows.size(), 1u);
+  EXPECT_EQ(*r.windows[0].maximum_velocity, 2.5);
+}
+
+// kill -9 of a running manager (a forked process running the sweep), then a
+// restart: the jobs that had finished are not redone, the ones that were
+// running run again, and every job ends exactly once with one result.
+TEST(campaign_executor, kill_minus_nine_and_resume_end_every_job_exactly_once) {
+  TempDir t;
+  const fs::path db = t.path / "c.db";
+  const fs::path log = t.path / "jobs.log";
+  std::vector<double> speeds;
+  for (int i = 0; i < 12; ++i) speeds.push_back(i);
+  const CampaignSpec spec = fake_campaign(
+      "kill9", {json::object({{"sleep", 0.3}, {"threshold", 6}, {"log", log.string()}})}, speeds);
+
+  const pid_t manager = fork();  // before this process starts any thread
+  if (manager == 0) {
+    int code = 0;
+    try {
+      Store store(db);
+      run_sweep(store, spec, fake_options(2));
+    } catch (...) {
+      code = 1;
+    }
+    _exit(code);
+  }
+  // Wait until some jobs have ended and others are running, then SIGKILL.
+  auto count = [&](const std::string& what) {
+    int n = 0;
+    for (const std::string& l : lines_of(log)) n += l.rfind(what, 0) == 0;
+    return n;
+  };
+  for (int i = 0; i < 4000 && !(count("end") >= 4 && count("start") > count("end")); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(kill(manager, SIGKILL), 0);
+  int status = 0;
+  waitpid(manager, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const int ended_before = count("end");
+  ASSERT_GE(ended_before, 4);
+  ASSERT_LT(ended_before, 12);
+  // Its children die with it (PR_SET_PDEATHSIG): no job finishes afterwards.
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  EXPECT_EQ(count("end"), ended_before);
+
+  Store store(db);
+  const std::int64_t cid = store.campaigns().at(0).id;
+  JobCounts before = store.job_counts(cid);
+  std::set<std::string> stored_before;
+  for (const PointStatus& p : store.points(cid)) {
+    if (p.state == JobState::succeeded) stored_before.insert(p.point.job_hash);
+  }
+  EXPECT_GE(before.succeeded, ended_before - 2);  // at most the in-flight records can lag
+  EXPECT_GE(before.running, 1);                   // left behind by the dead manager
+
+  const SweepReport r = run_sweep(store, spec, fake_options(2));
+  EXPECT_EQ(r.state, CampaignState::finished);
+  EXPECT_GE(r.orphans_requeued, 1);
+  EXPECT_EQ(r.counts.succeeded, 12);
+  EXPECT_EQ(r.counts.total(), 12);
+  EXPECT_EQ(r.jobs_started, 12 - before.succeeded);
+
+  // Exactly once in the store: the jobs stored before the kill never started
+  // again; the others ran to an end (a job whose child had ended but whose
+  // result the killed manager had not stored yet legitimately runs again).
+  std::map<std::string, int> starts, ends;
+  for (const std::string& l : lines_of(log)) {
+    const auto sp = l.find(' ');
+    (l.rfind("start", 0) == 0 ? starts : ends)[l.substr(sp + 1)]++;
+  }
+  EXPECT_EQ(ends.size(), 12u);
+  for (const std::string& h : stored_before) {
+    EXPECT_EQ(starts[(fs::path(db.string() + ".jobs") / h / "out").string()], 1) << h;
+  }
+  for (const auto& [dir, n] : ends) EXPECT_LE(n, 2) << dir;
+  for (const PointStatus& p : store.points(cid)) {
+    EXPECT_TRUE(store.result(p.point.job_hash)) << p.point.velocity;
+  }
+  // And the window is the fake threshold's.
+  ASSERT_EQ(r.windows.size(), 1u);
+  EXPECT_EQ(*r.windows[0].maximum_velocity, 5.5);
+}
+
+}  // namespace

@@ -1,0 +1,243 @@
+// Campaigns of real splat jobs: the two-mass adhesion model
+// (scenes/verification/two_mass.json), run by `splat run` in child
+// processes. For k = 0 the masses stick below
+//   V0* = sqrt(2 G_c A (M + m) / (M m))
+// (momentum and energy: the relative kinetic energy after the elastic
+// collision must exceed the adhesion budget G_c A), an independent closed
+// form the window edge is checked against. Also: refinement finds the same
+// edge as a fine uniform grid with fewer jobs, and the sweep / windows /
+// regress commands as users call them.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "campaign/manager.hpp"
+
+namespace {
+
+using namespace splat::campaign;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() /
+           ("splat_sweep_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+const fs::path k_source = SPLAT_SOURCE_DIR;
+
+// The closed-form sticking threshold of the k = 0 two-mass problem, m/s.
+double two_mass_threshold(double G_c, double area, double M, double m) {
+  return std::sqrt(2.0 * G_c * area * (M + m) / (M * m));
+}
+
+json two_mass_campaign(const std::string& name, double step, std::optional<double> tolerance) {
+  json doc = {{"name", name},
+              {"base_scene", (k_source / "scenes/verification/two_mass.json").string()},
+              {"velocity", {{"range", {{"from", 0.1}, {"to", 1.5}, {"step", step}}}}},
+              {"G_c", {{"values", {0.1, 0.2}}}},
+              {"job", {{"time_limit", 60}}}};
+  if (tolerance) doc["refinement"] = {{"tolerance", *tolerance}, {"max_extra_jobs", 100}};
+  return doc;
+}
+
+ManagerOptions splat_options() {
+  ManagerOptions o;
+  o.workers = 2;
+  o.job_program = SPLAT_BINARY;
+  o.poll_seconds = 0.05;
+  return o;
+}
+
+struct Output {
+  int code = -1;
+  std::string text;
+};
+
+Output run(const std::string& args) {
+  const std::string cmd = std::string(SPLAT_BINARY) + " " + args + " 2>&1";
+  Output out;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return out;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.text.append(buf.data(), n);
+  const int status = pclose(pipe);
+  out.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+TEST(campaign_sweep, refinement_finds_the_fine_grid_window_with_fewer_jobs) {
+  TempDir t;
+  const double tol = 0.01;  // m/s
+  Store coarse_store(t.path / "refine.db");
+  const CampaignSpec refine = read_campaign(two_mass_campaign("refine", 0.1, tol));
+  const SweepReport r = run_sweep(coarse_store, refine, splat_options());
+  ASSERT_EQ(r.state, CampaignState::finished);
+  EXPECT_EQ(r.counts.failed + r.counts.timed_out, 0);
+
+  Store fine_store(t.path / "fine.db");
+  const CampaignSpec fine = read_campaign(two_mass_campaign("fine", tol, std::nullopt));
+  const SweepReport f = run_sweep(fine_store, fine, splat_options());
+  ASSERT_EQ(f.state, CampaignState::finished);
+
+  ASSERT_EQ(r.windows.size(), 2u);
+  ASSERT_EQ(f.windows.size(), 2u);
+  const json scene = json::parse(std::ifstream(k_source / "scenes/verification/two_mass.json"));
+  const json& tm = scene.at("two_mass");
+  for (std::size_t i = 0; i < 2; ++i) {
+    const json rw = json::parse(r.windows[i].window);
+    const json fw = json::parse(f.windows[i].window);
+    EXPECT_EQ(rw.at("params"), fw.at("params"));
+    // Sticks from the lowest speed, rebounds above one edge: one interval.
+    ASSERT_EQ(rw.at("intervals").size(), 1u);
+    ASSERT_EQ(fw.at("intervals").size(), 1u);
+    EXPECT_TRUE(rw.at("critical_velocity").is_null());
+    const double v_refine = rw.at("maximum_velocity").get<double>();
+    const double v_fine = fw.at("maximum_velocity").get<double>();
+    EXPECT_LE(rw.at("maximum_bracket").at("width").get<double>(), tol + 1e-12);
+    EXPECT_NEAR(v_refine, v_fine, tol);
+    const double v_exact =
+        two_mass_threshold(rw.at("params").at("G_c").get<double>(), tm.at("area").get<double>(),
+                           tm.at("M").get<double>(), tm.at("m").get<double>());
+    EXPECT_NEAR(v_refine, v_exact, tol / 2 + 1e-12) << "G_c " << rw.at("params");
+    EXPECT_NEAR(v_fine, v_exact, tol / 2 + 1e-12);
+  }
+  const int refine_jobs = r.counts.total();
+  const int fine_jobs = f.counts.total();
+  std::printf("refinement: %d jobs, uniform grid at %g m/s: %d jobs (%.1f %%)\n", refine_jobs, tol,
+              fine_jobs, 100.0 * refine_jobs / fine_jobs);
+  EXPECT_LE(refine_jobs, 0.4 * fine_jobs);
+}
+
+TEST(campaign_sweep, sweep_and_windows_commands) {
+  TempDir t;
+  const fs::path spec = t.path / "c.json";
+  std::ofstream(spec) << two_mass_campaign("cli", 0.1, 0.01).dump(2);
+  const std::string db = (t.path / "c.db").string();
+  Output o = run("sweep " + spec.string() + " --db " + db + " --workers 2");
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("critical velocity m/s"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("below 0.1"), std::string::npos) << o.text;  // open lower edge
+  // Again: everything comes from the store.
+  o = run("sweep " + spec.string() + " --db " + db);
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("0 started here"), std::string::npos) << o.text;
+
+  o = run("windows --db " + db + " --format json");
+  ASSERT_EQ(o.code, 0) << o.text;
+  const json rows = json::parse(o.text);
+  ASSERT_EQ(rows.size(), 2u);
+  for (const json& row : rows) {
+    EXPECT_TRUE(row.contains("params"));
+    EXPECT_TRUE(row.at("critical_velocity").is_null());
+    EXPECT_TRUE(row.at("maximum_velocity").is_number());
+    EXPECT_TRUE(row.at("maximum_bracket").at("width").get<double>() <= 0.01);
+    EXPECT_EQ(row.at("intervals").size(), 1u);
+  }
+  o = run("windows --db " + db + " --format csv");
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_EQ(o.text.rfind("campaign_id,params,critical_velocity", 0), 0u) << o.text;
+  o = run("windows --db " + db + " --campaign 99");
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.text.find("--campaign: no campaign 99"), std::string::npos) << o.text;
+
+  // Bad input names the field.
+  std::ofstream(spec) << R"({"name": "bad", "base_scene": "x.json", "velocity": {"values": [-1]}})";
+  o = run("sweep " + spec.string() + " --db " + db);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.text.find("/velocity/values/0: must be >= 0 (m/s)"), std::string::npos) << o.text;
+}
+
+// `splat sweep` as users run it, killed with SIGKILL in the middle and run
+// again: the second run finishes the campaign, reusing what was stored.
+TEST(campaign_sweep, sweep_command_survives_kill_minus_nine) {
+  TempDir t;
+  const fs::path spec = t.path / "c.json";
+  json doc = two_mass_campaign("kill", 0.01, std::nullopt);  // 2 x 141 jobs
+  std::ofstream(spec) << doc.dump(2);
+  const fs::path db = t.path / "c.db";
+  const pid_t child = fork();
+  if (child == 0) {
+    const int devnull = open("/dev/null", O_WRONLY);
+    dup2(devnull, STDOUT_FILENO);
+    dup2(devnull, STDERR_FILENO);
+    execl(SPLAT_BINARY, SPLAT_BINARY, "sweep", spec.c_str(), "--db", db.c_str(), "--workers", "2",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // Kill once some jobs have been stored.
+  for (int i = 0; i < 600; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!fs::exists(db)) continue;
+    try {
+      Store peek(db);
+      const auto cs = peek.campaigns();
+      if (!cs.empty() && peek.job_counts(cs[0].id).succeeded >= 20) break;
+    } catch (const std::exception&) {
+      // the file is being created
+    }
+  }
+  ASSERT_EQ(kill(child, SIGKILL), 0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  int stored = 0;
+  {
+    Store peek(db);
+    const JobCounts c = peek.job_counts(peek.campaigns().at(0).id);
+    stored = c.succeeded;
+    EXPECT_LT(stored, 282) << "the sweep ended before the kill; nothing tested";
+  }
+  const Output o = run("sweep " + spec.string() + " --db " + db.string());
+  ASSERT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(
+      o.text.find("282 jobs: 282 succeeded; " + std::to_string(282 - stored) + " started here"),
+      std::string::npos)
+      << o.text;
+}
+
+TEST(campaign_sweep, regress_passes_on_its_baseline_and_fails_on_drift) {
+  TempDir t;
+  const fs::path campaign = k_source / "campaigns/regress_two_mass.json";
+  const fs::path baseline = k_source / "campaigns/regress_two_mass.baseline.json";
+  const std::string db = (t.path / "r.db").string();
+  Output o =
+      run("regress " + campaign.string() + " --baseline " + baseline.string() + " --db " + db);
+  EXPECT_EQ(o.code, 0) << o.text;
+  EXPECT_NE(o.text.find("no drift"), std::string::npos) << o.text;
+
+  // Move one edge of the baseline by 0.1 m/s: drift, exit 1, named.
+  json b = json::parse(std::ifstream(baseline));
+  for (json& w : b.at("windows")) {
+    if (w.at("maximum_velocity").is_number()) {
+      w["maximum_velocity"] = w["maximum_velocity"].get<double>() + 0.1;
+      break;
+    }
+  }
+  const fs::path drifted = t.path / "drifted.json";
+  std::ofstream(drifted) << b.dump(2);
+  o = run("regress " + campaign.string() + " --baseline " + drifted.string() + " --db " + db);
+  EXPECT_EQ(o.code, 1) << o.text;
+  EXPECT_NE(o.text.find("DRIFT"), std::string::npos) << o.text;
+  EXPECT_NE(o.text.find("0 run"), std::string::npos) << o.text;  // cached results reused
+}
+
+}  // namespace

@@ -1,0 +1,186 @@
+// Deposition windows as a pure function of a stick/rebound sequence
+// (campaign/windows.hpp): intervals, edge brackets, unclassified samples
+// shown and never counted, and the bisection points of refinement.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "campaign/windows.hpp"
+
+namespace {
+
+using namespace splat::campaign;
+
+// Samples from a pattern, one character per velocity v0 + i*dv:
+// s = stick, r = rebound, u = unstable, f = failed.
+std::vector<Sample> pattern(const std::string& p, double v0 = 100.0, double dv = 100.0) {
+  std::vector<Sample> out;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    Sample s;
+    s.velocity = v0 + dv * static_cast<double>(i);
+    switch (p[i]) {
+      case 's':
+        s.verdict = Verdict::stick;
+        s.label = "stick";
+        break;
+      case 'r':
+        s.verdict = Verdict::rebound;
+        s.label = "rebound";
+        break;
+      case 'u':
+        s.label = "unstable";
+        break;
+      default:
+        s.label = "failed";
+        break;
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+TEST(campaign_windows, empty_and_all_rebound_have_no_interval) {
+  EXPECT_TRUE(compute_window({}).intervals.empty());
+  const Window w = compute_window(pattern("rrrr"));
+  EXPECT_TRUE(w.intervals.empty());
+  EXPECT_FALSE(w.critical_velocity);
+  EXPECT_FALSE(w.maximum_velocity);
+  EXPECT_EQ(w.rebounds, 4);
+}
+
+TEST(campaign_windows, one_interval_both_edges_closed) {
+  // 100 r, 200 r, 300 s, 400 s, 500 s, 600 r
+  const Window w = compute_window(pattern("rrsssr"));
+  ASSERT_EQ(w.intervals.size(), 1u);
+  const StickInterval& iv = w.intervals[0];
+  EXPECT_EQ(*iv.lower.rebound_velocity, 200.0);
+  EXPECT_EQ(iv.lower.stick_velocity, 300.0);
+  EXPECT_EQ(iv.upper.stick_velocity, 500.0);
+  EXPECT_EQ(*iv.upper.rebound_velocity, 600.0);
+  EXPECT_EQ(*w.critical_velocity, 250.0);
+  EXPECT_EQ(*w.maximum_velocity, 550.0);
+  EXPECT_EQ(*iv.lower.width(), 100.0);
+}
+
+TEST(campaign_windows, open_edges_when_the_range_ends_inside_the_window) {
+  // Sticks from the lowest speed: the lower edge lies below the range.
+  Window w = compute_window(pattern("sssrr"));
+  ASSERT_EQ(w.intervals.size(), 1u);
+  EXPECT_FALSE(w.intervals[0].lower.closed());
+  EXPECT_FALSE(w.critical_velocity);
+  EXPECT_EQ(*w.maximum_velocity, 350.0);
+  // Sticks up to the highest speed: the window does not close.
+  w = compute_window(pattern("rrsss"));
+  EXPECT_EQ(*w.critical_velocity, 250.0);
+  EXPECT_FALSE(w.maximum_velocity);
+  EXPECT_FALSE(w.intervals[0].upper.closed());
+}
+
+TEST(campaign_windows, several_intervals_are_reported_not_smoothed) {
+  // Thesis: a second sticking range at very high speed.
+  const Window w = compute_window(pattern("rssrrrssr"));
+  ASSERT_EQ(w.intervals.size(), 2u);
+  EXPECT_EQ(*w.critical_velocity, 150.0);  // first interval's lower edge
+  EXPECT_EQ(*w.maximum_velocity, 850.0);   // last interval's upper edge
+  EXPECT_EQ(*w.intervals[0].upper.estimate(), 350.0);
+  EXPECT_EQ(*w.intervals[1].lower.estimate(), 650.0);
+  const nlohmann::json j = to_json(w);
+  EXPECT_EQ(j.at("intervals").size(), 2u);
+  EXPECT_EQ(j.at("critical_velocity"), 150.0);
+  EXPECT_EQ(j.at("maximum_velocity"), 850.0);
+}
+
+TEST(campaign_windows, unstable_jobs_inside_a_bracket_are_shown_not_counted) {
+  // 100 r, 200 u, 300 f, 400 s, 500 s, 600 u, 700 r
+  const Window w = compute_window(pattern("rufssur"));
+  ASSERT_EQ(w.intervals.size(), 1u);
+  const StickInterval& iv = w.intervals[0];
+  // The bracket stays between the nearest rebound and stick: [100, 400].
+  EXPECT_EQ(*iv.lower.rebound_velocity, 100.0);
+  EXPECT_EQ(iv.lower.stick_velocity, 400.0);
+  ASSERT_EQ(iv.lower.unclassified.size(), 2u);
+  EXPECT_EQ(iv.lower.unclassified[0].label, "unstable");
+  EXPECT_EQ(iv.lower.unclassified[1].label, "failed");
+  EXPECT_EQ(*iv.upper.rebound_velocity, 700.0);
+  ASSERT_EQ(iv.upper.unclassified.size(), 1u);
+  EXPECT_EQ(iv.upper.unclassified[0].velocity, 600.0);
+  EXPECT_EQ(w.sticks, 2);
+  EXPECT_EQ(w.rebounds, 2);
+  EXPECT_EQ(w.unclassified.size(), 3u);
+  // The JSON shows them too.
+  const nlohmann::json j = to_json(w);
+  EXPECT_EQ(j.at("critical_bracket").at("unclassified").size(), 2u);
+  EXPECT_EQ(j.at("critical_bracket").at("unclassified")[0].at("label"), "unstable");
+}
+
+TEST(campaign_windows, unstable_between_sticks_stays_inside_the_interval) {
+  const Window w = compute_window(pattern("rsusr"));
+  ASSERT_EQ(w.intervals.size(), 1u);
+  ASSERT_EQ(w.intervals[0].unclassified.size(), 1u);
+  EXPECT_EQ(w.intervals[0].unclassified[0].velocity, 300.0);
+  EXPECT_TRUE(w.intervals[0].lower.unclassified.empty());
+}
+
+TEST(campaign_windows, only_unclassified_gives_no_interval) {
+  const Window w = compute_window(pattern("uuf"));
+  EXPECT_TRUE(w.intervals.empty());
+  EXPECT_EQ(w.unclassified.size(), 3u);
+}
+
+TEST(campaign_windows, unsorted_input_is_sorted) {
+  std::vector<Sample> s = pattern("rssr");
+  std::swap(s[0], s[3]);
+  std::swap(s[1], s[2]);
+  const Window w = compute_window(s);
+  ASSERT_EQ(w.intervals.size(), 1u);
+  EXPECT_EQ(*w.critical_velocity, 150.0);
+  EXPECT_EQ(*w.maximum_velocity, 350.0);
+}
+
+TEST(campaign_windows, refinement_bisects_each_wide_closed_edge) {
+  const Window w = compute_window(pattern("rrsssr"));
+  EXPECT_EQ(refinement_points(w, 10.0), (std::vector<double>{250.0, 550.0}));
+  EXPECT_TRUE(refinement_points(w, 100.0).empty());  // width 100 is within tolerance
+  // Open edges cannot be refined.
+  EXPECT_EQ(refinement_points(compute_window(pattern("ssr")), 1.0), std::vector<double>{250.0});
+}
+
+TEST(campaign_windows, refinement_steps_around_an_unstable_midpoint) {
+  // Bracket [100, 300] with an unstable sample at 200: bisect a half, not 200 again.
+  const Window w = compute_window(pattern("rus"));
+  const std::vector<double> p = refinement_points(w, 10.0);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_TRUE(p[0] == 150.0 || p[0] == 250.0) << p[0];
+}
+
+// Refinement driven to the end against a known threshold: the edge found is
+// within tolerance of the truth, and it needs about log2(width/tol) jobs.
+TEST(campaign_windows, refinement_converges_to_a_known_edge) {
+  const double v_true = 437.3;  // stick below, rebound above
+  auto truth = [&](double v) {
+    Sample s;
+    s.velocity = v;
+    s.verdict = v < v_true ? Verdict::stick : Verdict::rebound;
+    return s;
+  };
+  std::vector<Sample> samples;
+  for (double v = 100.0; v <= 1000.0; v += 100.0) samples.push_back(truth(v));
+  const double tol = 1.0;
+  int extra = 0;
+  for (;;) {
+    const std::vector<double> next = refinement_points(compute_window(samples), tol);
+    if (next.empty()) break;
+    for (double v : next) samples.push_back(truth(v));
+    extra += static_cast<int>(next.size());
+    ASSERT_LT(extra, 100);
+  }
+  const Window w = compute_window(samples);
+  ASSERT_TRUE(w.maximum_velocity);
+  EXPECT_LE(*w.intervals[0].upper.width(), tol);
+  EXPECT_NEAR(*w.maximum_velocity, v_true, tol / 2);
+  EXPECT_EQ(extra, static_cast<int>(std::ceil(std::log2(100.0 / tol))));
+}
+
+}  // namespace

@@ -1,0 +1,145 @@
+// The particle_impact block: which model `auto` picks and why, what the
+// expansion builds for each fidelity, and clear errors for what cannot be
+// modelled.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "solver/input/impact_scene.hpp"
+#include "solver/input/scene_io.hpp"
+#include "solver/input/schema.hpp"
+
+namespace splat {
+namespace {
+
+using nlohmann::json;
+
+json impact(json block) {
+  return {{"name", "impact"}, {"particle_impact", std::move(block)}};
+}
+
+json al_on_al(double v) {
+  return {{"particle", {{"material", "al-thesis"}, {"radius", 12.5e-6}, {"elements_across", 8}}},
+          {"velocity", v}};
+}
+
+std::string first_error(const json& doc) {
+  try {
+    read_scene(doc);
+  } catch (const InputError& e) {
+    return e.violations().front().pointer + ": " + e.violations().front().message;
+  }
+  return "";
+}
+
+TEST(ImpactScene, normal_impact_is_axisymmetric_with_plain_contact_and_no_damage) {
+  const ExpandedImpact e = expand_particle_impact(impact(al_on_al(600.0)));
+  EXPECT_EQ(e.choice.model, "fe-axisym");
+  EXPECT_FALSE(e.choice.rigid_substrate);
+  EXPECT_NE(e.choice.why.find("normal impact"), std::string::npos) << e.choice.why;
+  EXPECT_NE(e.choice.why.find("no adhesion"), std::string::npos) << e.choice.why;
+  const json& s = e.scene;
+  ASSERT_EQ(s.at("bodies").size(), 2u);
+  EXPECT_EQ(s["bodies"][0]["discretization"]["type"], "fe-axisym");
+  EXPECT_EQ(s["bodies"][0]["switches"]["damage"], false);
+  EXPECT_EQ(s["interactions"][0]["type"], "contact");
+  EXPECT_FALSE(s["interactions"][0].contains("adhesion"));
+  // Substrate size R (4 + v / 250) = 6.4 R; element size at the impact point R / 8.
+  EXPECT_NEAR(s["bodies"][1]["geometry"]["r_max"].get<double>(), 6.4 * 12.5e-6, 1e-12);
+  EXPECT_NEAR(s["bodies"][1]["discretization"]["element_size"].get<double>(), 12.5e-6 / 8, 1e-15);
+  EXPECT_EQ(s["boundary_conditions"].size(), 2u);  // absorbing outer and bottom
+  EXPECT_GT(s["time"]["end_time"].get<double>(), 0.0);
+  for (const SchemaViolation& v : validate("scene", s)) ADD_FAILURE() << to_string(v);
+}
+
+TEST(ImpactScene, oblique_impact_needs_full_3d) {
+  json b = al_on_al(600.0);
+  b["angle"] = 30.0;
+  const ExpandedImpact e = expand_particle_impact(impact(b));
+  EXPECT_EQ(e.choice.model, "fe-3d-full");
+  const json v = e.scene["bodies"][0]["initial"]["velocity"];
+  EXPECT_NEAR(v[0].get<double>(), 300.0, 1e-9);
+  EXPECT_NEAR(v[2].get<double>(), -600.0 * std::sqrt(3.0) / 2.0, 1e-9);
+  b["fidelity"] = "fe-axisym";
+  EXPECT_NE(first_error(impact(b)).find("/particle_impact/fidelity"), std::string::npos);
+}
+
+TEST(ImpactScene, quarter_model_has_two_symmetry_planes_on_both_bodies) {
+  json b = al_on_al(600.0);
+  b["fidelity"] = "fe-3d-quarter";
+  const ExpandedImpact e = expand_particle_impact(impact(b));
+  EXPECT_EQ(e.scene["bodies"][0]["discretization"]["sector"], "quarter");
+  int symmetry = 0;
+  for (const json& bc : e.scene["boundary_conditions"]) symmetry += bc["type"] == "symmetry";
+  EXPECT_EQ(symmetry, 4);
+}
+
+TEST(ImpactScene, adhesion_with_erosion_switches_damage_on) {
+  json b = al_on_al(600.0);
+  b["adhesion"] = {{"G_c", 30.0}, {"D_adh_max", 0.5}};
+  const ExpandedImpact e = expand_particle_impact(impact(b));
+  EXPECT_EQ(e.scene["bodies"][0]["switches"]["damage"], true);
+  EXPECT_EQ(e.scene["interactions"][0]["adhesion"]["G_c"], 30.0);
+  EXPECT_NE(e.choice.why.find("adhesion on contact pairs"), std::string::npos);
+}
+
+TEST(ImpactScene, hard_substrate_without_adhesion_becomes_a_rigid_wall) {
+  json soft = {{"name", "soft"},
+               {"source", "test"},
+               {"density", 8960.0},
+               {"elastic", {{"E", 124e9}, {"nu", 0.34}}},
+               {"strength",
+                {{"model", "johnson-cook"},
+                 {"A", 50e6},
+                 {"B", 50e6},
+                 {"n", 0.3},
+                 {"C", 0.0},
+                 {"eps_dot_0", 1.0},
+                 {"m", 1.0},
+                 {"T_ref", 300.0},
+                 {"T_melt", 1356.0}}},
+               {"thermal", {{"c_p", 385.0}, {"heat_fraction", 0.9}}},
+               {"eos", {{"model", "linear"}}}};
+  json b = {{"particle", {{"material", soft}, {"radius", 10e-6}}},
+            {"substrate", {{"material", "ti6al4v-thesis"}}},
+            {"velocity", 300.0}};
+  const ExpandedImpact e = expand_particle_impact(impact(b));
+  EXPECT_TRUE(e.choice.rigid_substrate) << e.choice.why;
+  ASSERT_EQ(e.scene["bodies"].size(), 1u);
+  EXPECT_EQ(e.scene["interactions"][0]["type"], "rigid-wall");
+  // The same pair with adhesion keeps a deformable substrate.
+  b["adhesion"] = {{"G_c", 1.0}};
+  EXPECT_FALSE(expand_particle_impact(impact(b)).choice.rigid_substrate);
+  // Adhesion on an explicitly rigid substrate is an input error.
+  b["substrate"]["type"] = "rigid";
+  EXPECT_NE(first_error(impact(b)).find("/particle_impact/substrate/type"), std::string::npos);
+}
+
+TEST(ImpactScene, two_mass_fidelity_runs_as_a_two_mass_scene) {
+  json b = al_on_al(100.0);
+  b["fidelity"] = "two-mass";
+  b["adhesion"] = {{"G_c", 1.0}};
+  const LoadedScene loaded = read_scene(impact(b));
+  ASSERT_TRUE(loaded.scene.two_mass.has_value());
+  ASSERT_TRUE(loaded.scene.impact.has_value());
+  EXPECT_EQ(loaded.scene.impact->model, "two-mass");
+  const double M = 4.0 / 3.0 * 3.141592653589793 * std::pow(12.5e-6, 3) * 2700.0;
+  EXPECT_NEAR(loaded.scene.two_mass->M / M, 1.0, 0.01);
+  EXPECT_EQ(loaded.resolved["particle_impact"]["model"]["name"], "two-mass");
+}
+
+TEST(ImpactScene, bad_blocks_name_the_field) {
+  json b = al_on_al(600.0);
+  b["particle"]["radius"] = -1.0;
+  EXPECT_NE(first_error(impact(b)).find("/particle_impact/particle/radius"), std::string::npos);
+  b = al_on_al(600.0);
+  b["particle"]["material"] = "unobtainium";
+  EXPECT_NE(first_error(impact(b)).find("/particle_impact/particle/material"), std::string::npos)
+      << first_error(impact(b));
+  b = al_on_al(0.0);
+  EXPECT_NE(first_error(impact(b)).find("/particle_impact/velocity"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace splat
