@@ -31,6 +31,12 @@ mutations=(
   "solver/adhesion/cohesive_law.cpp|const double I_cap = max_tension(p, area) * dt;|const double I_cap = 1.05 * max_tension(p, area) * dt;|two_mass_adhesion.spring*"
   "solver/two_mass/two_mass_model.cpp|constexpr double k_restitution = 1.0;|constexpr double k_restitution = 0.95;|two_mass_adhesion.free_mass*"
   "solver/two_mass/two_mass_model.cpp|double v_new = v - dt * s.k * x / s.m;|double v_new = v - dt * 1.02 * s.k * x / s.m;|two_mass_adhesion.spring*"
+  "solver/sph/sph_body.cpp|(B * b.pair_grad[kk])|(b.pair_grad[kk])|SphWaves.ElasticWaveSpeedInAColumn"
+  "solver/sph/sph_body.cpp|Vec3 pj = b.VP[j] * b.pair_grad_rev[kk];|Vec3 pj = -(b.VP[j] * b.pair_grad[kk]);|SphConservation.*"
+  "solver/sph/sph_body.cpp|* st.cauchy() * F.inverse().transpose();|* st.cauchy();|SphConservation.*"
+  "solver/sph/sph_body.cpp|pj = mirror_vector(b.planes, op, pj);|(void)op;|SphBoundaries.QuarterBall*"
+  "solver/sph/sph_boundary.cpp|a.area.push_back(body.volume0[i] / layer_thickness);|a.area.push_back(body.volume0[i] / body.spacing);|SphBoundaries.AbsorbingEnd*"
+  "solver/sph/sph_body.cpp|nodes.mass[g] = material.density * cloud.volume[i];|nodes.mass[g] = 1.1 * material.density * cloud.volume[i];|SphWaves.*"
 )
 
 status=0

@@ -268,7 +268,10 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   };
   result.max_deformation = compute_F();
   const double threshold = b.settings.update_threshold;
-  if (b.update_pending || (threshold > 0.0 && result.max_deformation > threshold)) {
+  // A non-finite deformation (a blown-up state) is left to the caller's stop
+  // checks: re-referencing it would only spread the NaNs.
+  const bool finite = std::isfinite(result.max_deformation);
+  if (finite && (b.update_pending || (threshold > 0.0 && result.max_deformation > threshold))) {
     sph_update_reference(b, nodes);
     result.reference_updated = true;
     result.max_deformation = compute_F();
@@ -319,6 +322,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       b.active[i] = 0;
       b.VP[i].setZero();
       result.deactivated.push_back(static_cast<int>(i));
+      result.deactivated_energy += b.volume0[i] * b.state[i].e;
       b.update_pending = true;
     }
   }

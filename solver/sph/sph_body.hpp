@@ -46,7 +46,9 @@
 // with min_j r_ij the current distance to the nearest neighbour (the spacing
 // d on the initial lattice; it shrinks with compression along any pair,
 // whatever the reference) and the signal speed of Monaghan (1992); the
-// caller multiplies by its stability coefficient.
+// caller multiplies by its stability coefficient. Measured on a free elastic
+// ball without viscosity (the bound is then min r / c): stable at 1.1 (HCP)
+// and 1.0 (cubic), unstable at 1.2, so the Simulation's default 0.9 is safe.
 // Reference update: when max_i ||F_i - I||_F (Frobenius) exceeds
 // update_threshold, the whole body is re-referenced at the start of
 // sph_internal_forces: X = x, V_i *= det F_i, J_ref *= det F_i, F_ref = F F_ref
@@ -61,7 +63,7 @@
 // deactivate_failed a particle at D_max stops carrying stress and is dropped
 // from all neighbour lists at the next reference update (forced at the next
 // call); it then flies freely and its energy leaves the internal energy (it is
-// reported in deactivated_energy).
+// reported in SphStepResult::deactivated_energy).
 #pragma once
 
 #include <cstdint>
@@ -139,10 +141,11 @@ struct SphStepResult {
   double viscosity_power = 0.0;  // -sum f_visc . v >= 0, W
   int max_return_iterations = 0;
   bool return_failed = false;
-  long long inverted = 0;          // active particles with det F <= 0 (carry no stress)
-  double max_deformation = 0.0;    // max ||F - I||_F after any update, -
-  bool reference_updated = false;  // the body was re-referenced in this call
-  std::vector<int> deactivated;    // particles (local) deactivated in this call
+  long long inverted = 0;           // active particles with det F <= 0 (carry no stress)
+  double max_deformation = 0.0;     // max ||F - I||_F after any update, -
+  bool reference_updated = false;   // the body was re-referenced in this call
+  std::vector<int> deactivated;     // particles (local) deactivated in this call
+  double deactivated_energy = 0.0;  // V0 e of those particles, leaving the internal energy, J
 };
 
 // Builds a body from a particle cloud and appends its particles to `nodes`:

@@ -97,13 +97,26 @@ NeighbourList find_neighbours(const std::vector<Vec3>& X, const std::vector<doub
   std::vector<std::vector<Entry>> lists(n);
   if (n == 0) return to_csr(lists);
   const double h_max = *std::max_element(h.begin(), h.end());
-  const double cell = kernel_support * h_max;  // no pair is farther apart than this
+  // Cells at least 2 max h wide (no pair is farther apart than that), widened
+  // when the particles are spread so thinly (a few that flew far away) that
+  // the grid would hold many more cells than particles.
+  double cell = kernel_support * h_max;
   Vec3 lo = X[0], hi = X[0];
   for (const Vec3& p : X) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
+  if (!lo.allFinite() || !hi.allFinite()) {
+    throw std::invalid_argument("neighbour search: non-finite position");
+  }
+  const double max_cells = 8.0 * static_cast<double>(n) + 64.0;
   long dims[3];
+  for (;;) {
+    double count = 1.0;
+    for (int a = 0; a < 3; ++a) count *= std::floor((hi[a] - lo[a]) / cell) + 1.0;
+    if (count <= max_cells) break;
+    cell *= 2.0;
+  }
   for (int a = 0; a < 3; ++a) {
     dims[a] = std::max(1L, static_cast<long>(std::floor((hi[a] - lo[a]) / cell)) + 1);
   }

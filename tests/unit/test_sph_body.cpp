@@ -76,6 +76,11 @@ TEST(SphNeighbours, CellSearchEqualsAllPairs) {
   for (std::uint8_t op : ghost.op) mirrored += op != 0 ? 1 : 0;
   EXPECT_GT(mirrored, 100u);
 
+  // A particle that flew far away does not blow up the cell grid.
+  std::vector<Vec3> far = X;
+  far.back() = Vec3(1e3, -2e3, 5e2);
+  expect_same_lists(find_neighbours(far, h, planes), find_neighbours_all_pairs(far, h, planes));
+
   std::vector<std::uint8_t> active(X.size(), 1);
   for (std::size_t i = 0; i < X.size(); i += 3) active[i] = 0;
   expect_same_lists(find_neighbours(X, h, planes, active),
@@ -367,6 +372,7 @@ TEST(SphDamage, FailedParticleIsDeactivatedOnlyWhenAsked) {
       continue;
     }
     ASSERT_EQ(r.deactivated, std::vector<int>{failed});
+    EXPECT_EQ(r.deactivated_energy, body.volume0[failed] * body.state[failed].e);
     EXPECT_EQ(body.VP[failed].norm(), 0.0);
     const SphStepResult next = sph_internal_forces(body, nodes, 1e-9);
     EXPECT_TRUE(next.reference_updated);
