@@ -372,6 +372,10 @@ struct Server::Impl {
   void routes() {
     const std::string p = k_prefix;
     http.set_payload_max_length(o.max_body_bytes);
+    // Small JSON answers on kept-alive connections: without TCP_NODELAY,
+    // Nagle's algorithm and delayed ACKs hold each one back ~40 ms.
+    http.set_tcp_nodelay(true);
+    http.set_keep_alive_max_count(1000);
     http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       if (o.token.empty()) return httplib::Server::HandlerResponse::Unhandled;
       if (req.method == "GET" || req.method == "HEAD" || req.method == "OPTIONS") {
