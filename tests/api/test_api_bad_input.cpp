@@ -97,6 +97,10 @@ TEST_F(BadInput, unknown_material_and_material_paths) {
   // A path would make the server read its own files.
   c["base_scene"]["particle_impact"]["particle"]["material"] = "../../etc/passwd";
   expect_problem(post(c), 422, "/base_scene/particle_impact/particle/material");
+  // Even a readable, valid material file on the server may not be named.
+  c["base_scene"]["particle_impact"]["particle"]["material"] =
+      std::string(SPLAT_SOURCE_DIR) + "/materials/cu-thesis.json";
+  expect_problem(post(c), 422, "/base_scene/particle_impact/particle/material");
   c["base_scene"] = "scenes/verification/two_mass.json";
   expect_problem(post(c), 422, "/base_scene");
 }

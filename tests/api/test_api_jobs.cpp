@@ -61,6 +61,7 @@ TEST(api_jobs, a_result_path_outside_the_jobs_folder_is_never_served) {
   // A store whose result points outside the jobs folder (a tampered or
   // moved store): the API must refuse to serve that file.
   const std::string hash(64, 'b');
+  fs::create_directories(dir.path / "store.db.jobs");  // so that ".." through it resolves
   {
     campaign::Store store(o.db);
     campaign::CampaignRecord rec;
