@@ -1,5 +1,6 @@
 #include "api/server.hpp"
 
+#include <arpa/inet.h>
 #include <httplib.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <deque>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -32,7 +34,11 @@ namespace fs = std::filesystem;
 
 bool is_loopback_host(const std::string& host) {
   if (host == "localhost" || host == "::1" || host == "[::1]") return true;
-  return host.rfind("127.", 0) == 0;
+  // Only a numeric IPv4 address in 127.0.0.0/8 ("127.example.org" is a name
+  // that may resolve anywhere).
+  in_addr a{};
+  if (inet_pton(AF_INET, host.c_str(), &a) != 1) return false;
+  return (ntohl(a.s_addr) >> 24) == 127;
 }
 
 bool constant_time_equal(const std::string& a, const std::string& b) {
@@ -50,6 +56,7 @@ namespace {
 
 constexpr const char* k_prefix = "/api/v1";
 constexpr std::size_t k_max_history_points = 2000;
+constexpr std::size_t k_max_idempotency_keys = 10000;  // remembered submissions
 
 // An error answered as an RFC 9457 problem document.
 struct Problem {
@@ -284,6 +291,7 @@ struct Server::Impl {
     std::int64_t campaign_id;
   };
   std::map<std::string, Remembered> idempotency;  // Idempotency-Key -> first submission
+  std::deque<std::string> idempotency_order;      // keys, oldest first
   std::set<std::string> material_names;
   std::atomic<bool> bound{false};
   std::atomic<long long> requests{0};
@@ -755,7 +763,15 @@ struct Server::Impl {
                      version});
     }
     store.add_points(id, pts, false);
-    if (!key.empty()) idempotency[key] = {body_hash, id};
+    if (!key.empty()) {
+      // Bounded memory: the oldest keys are forgotten first.
+      if (idempotency_order.size() >= k_max_idempotency_keys) {
+        idempotency.erase(idempotency_order.front());
+        idempotency_order.pop_front();
+      }
+      idempotency[key] = {body_hash, id};
+      idempotency_order.push_back(key);
+    }
     if (o.run_campaigns) runner.submit(id);
     res.set_header("Location", std::string(k_prefix) + "/campaigns/" + std::to_string(id));
     reply_json(req, res, campaign_doc(campaign_or_404(id), true), 202);

@@ -22,6 +22,9 @@ TEST(api_auth, loopback_hosts) {
   EXPECT_FALSE(api::is_loopback_host("0.0.0.0"));
   EXPECT_FALSE(api::is_loopback_host("10.1.2.3"));
   EXPECT_FALSE(api::is_loopback_host("::"));
+  EXPECT_FALSE(api::is_loopback_host("127.example.org"));
+  EXPECT_FALSE(api::is_loopback_host("127.0.0.1.example.org"));
+  EXPECT_FALSE(api::is_loopback_host(""));
 }
 
 TEST(api_auth, refuses_a_public_address_without_a_token) {
