@@ -661,6 +661,8 @@ struct Server::Impl {
   // Every history column of the result file, at most k_max_history_points
   // rows (evenly strided, last row kept), with its unit.
   static json histories(const fs::path& h5) {
+    // Called from several server threads at once: Debian's HDF5 is built
+    // thread-safe (h5cc -showconfig: "Threadsafety: yes").
     try {
       const splat::ResultSummary s = splat::read_result_summary(h5);
       json cols = json::object();

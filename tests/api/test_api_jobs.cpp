@@ -1,5 +1,8 @@
 // /api/v1/jobs/{id}: summary, parameters, time histories; result.h5
 // download; downloads never leave the jobs folder.
+#include <atomic>
+#include <thread>
+
 #include "campaign/store.hpp"
 #include "tests/api/api_fixture.hpp"
 
@@ -43,6 +46,21 @@ TEST(api_jobs, job_document_histories_and_download) {
     ASSERT_TRUE(cols.contains("v_M")) << cols.dump();
     EXPECT_NEAR(cols["v_M"][0].get<double>(), row["velocity"].get<double>(), 1e-12);
     EXPECT_EQ(job["histories"]["units"]["v_M"], "m/s");
+    // Readers in parallel (the server's threads share one HDF5 library, which
+    // Debian builds thread-safe): the same document every time.
+    std::vector<std::thread> readers;
+    std::atomic<int> mismatches{0};
+    for (int t = 0; t < 4; ++t) {
+      readers.emplace_back([&] {
+        httplib::Client rc = server.client();
+        for (int i = 0; i < 10; ++i) {
+          auto again = rc.Get(row["links"]["self"].get<std::string>().c_str());
+          if (!again || again->status != 200 || again->body != jr->body) ++mismatches;
+        }
+      });
+    }
+    for (std::thread& th : readers) th.join();
+    EXPECT_EQ(mismatches, 0);
     // Download: the same bytes as the file.
     ASSERT_TRUE(job["links"]["result_h5"].is_string()) << job.dump();
     auto h5 = c.Get(job["links"]["result_h5"].get<std::string>().c_str());
