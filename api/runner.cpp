@@ -115,6 +115,10 @@ void CampaignRunner::loop() {
         if (r.state == CampaignState::cancelled && !user_cancelled_) {
           // Stopped by shutdown, not by a user: leave it to be resumed.
           store_.set_campaign_state(id, CampaignState::active);
+        } else if (r.state == CampaignState::finished && user_cancelled_) {
+          // The cancel came after the last job: it stays finished (not
+          // `cancelling` with nobody left to act on it).
+          store_.set_campaign_state(id, CampaignState::finished);
         }
       }
     } catch (const std::exception& e) {
