@@ -2,7 +2,7 @@
 # Sets everything up (Debian packages, configure, build, the dashboard's npm
 # packages from web/package-lock.json and Debian's chromium for the `browser`
 # label) and runs the default test set: every ctest label except `long` and
-# `slurm` (so `api` and `browser` too), then the unit tests
+# `slurm` (so `api` and `browser` too), then the unit and API tests
 # once more under AddressSanitizer + UndefinedBehaviorSanitizer, then the
 # `slurm` label (installs slurm-wlm and munge, starts and stops its own
 # one-node cluster; fails clearly if they cannot be installed). Idempotent.
@@ -43,11 +43,11 @@ cmake -S "$here" -B "$here/build" >/dev/null
 ctest --test-dir "$here/build" -LE 'long|slurm' --output-on-failure -j "$jobs"
 echo "test: dashboard screenshot in $here/build/test-artifacts/dashboard.png"
 
-# Sanitizer pass over the unit tests (debug info, no benchmarks).
+# Sanitizer pass over the unit and API tests (debug info, no benchmarks).
 "$here/scripts/setup.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSPLAT_SANITIZE=ON -DSPLAT_BUILD_BENCHMARKS=OFF
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  ctest --test-dir "$here/build-asan" -L unit --output-on-failure -j "$jobs"
+  ctest --test-dir "$here/build-asan" -L 'unit|api' --output-on-failure -j "$jobs"
 
 # Slurm executor against a real one-node cluster (label `slurm`).
 "$here/tests/slurm/cluster.sh" install
