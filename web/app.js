@@ -408,9 +408,11 @@ function renderMap() {
         x: { title: { display: true, text: 'impact velocity (m/s)' } },
         y: { title: { display: true, text: axis || '-' } },
       },
-      onClick: (ev, elements) => {
+      // The chart's current data, not this first call's: refreshes replace it.
+      onClick: (ev, elements, chart) => {
         const hit = elements.find((e) => e.datasetIndex < 3);
-        if (hit) showJob(datasets[hit.datasetIndex].data[hit.index].job.id);
+        const point = hit && chart.data.datasets[hit.datasetIndex].data[hit.index];
+        if (point && point.job) showJob(point.job.id);
       },
       plugins: {
         tooltip: {
