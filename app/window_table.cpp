@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "campaign/window_rows.hpp"
+
 namespace splat::app {
 
 using nlohmann::json;
@@ -43,13 +45,7 @@ std::string unclassified_text(const json& list) {
 }  // namespace
 
 json windows_json(const std::vector<campaign::WindowRecord>& windows) {
-  json rows = json::array();
-  for (const campaign::WindowRecord& w : windows) {
-    json row = json::parse(w.window);
-    row["campaign_id"] = w.campaign_id;
-    rows.push_back(std::move(row));
-  }
-  return rows;
+  return campaign::window_rows(windows);
 }
 
 void print_windows_table(std::FILE* out, const std::vector<campaign::WindowRecord>& windows) {
@@ -74,35 +70,7 @@ void print_windows_table(std::FILE* out, const std::vector<campaign::WindowRecor
 }
 
 void print_windows_csv(std::FILE* out, const std::vector<campaign::WindowRecord>& windows) {
-  std::fprintf(out,
-               "campaign_id,params,critical_velocity,critical_rebound,critical_stick,"
-               "maximum_velocity,maximum_stick,maximum_rebound,intervals,sticks,rebounds,"
-               "unclassified\n");
-  for (const json& row : windows_json(windows)) {
-    auto field = [](const json& edge, const char* key) {
-      return edge.is_null() ? std::string() : number(edge.at(key), "%.17g");
-    };
-    std::string params = row.at("params").dump();
-    std::string quoted = "\"";
-    for (char c : params) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    quoted += "\"";
-    const json& lo = row.at("critical_bracket");
-    const json& hi = row.at("maximum_bracket");
-    std::string cv = number(row.at("critical_velocity"), "%.17g");
-    std::string mv = number(row.at("maximum_velocity"), "%.17g");
-    if (cv == "-") cv.clear();
-    if (mv == "-") mv.clear();
-    std::string a = field(lo, "rebound_velocity"), b = field(lo, "stick_velocity");
-    std::string c = field(hi, "stick_velocity"), d = field(hi, "rebound_velocity");
-    for (std::string* s : {&a, &b, &c, &d}) {
-      if (*s == "-") s->clear();
-    }
-    std::fprintf(out, "%lld,%s,%s,%s,%s,%s,%s,%s,%zu,%d,%d,%zu\n",
-                 static_cast<long long>(row.at("campaign_id").get<std::int64_t>()), quoted.c_str(),
-                 cv.c_str(), a.c_str(), b.c_str(), mv.c_str(), c.c_str(), d.c_str(),
-                 row.at("intervals").size(), row.at("sticks").get<int>(),
-                 row.at("rebounds").get<int>(), row.at("unclassified").size());
-  }
+  std::fputs(campaign::window_rows_csv(windows).c_str(), out);
 }
 
 std::string counts_text(const campaign::JobCounts& c) {

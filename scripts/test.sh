@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Sets everything up (Debian packages, configure, build) and runs the default
-# test set: every ctest label except `long` and `slurm`, then the unit tests
+# Sets everything up (Debian packages, configure, build, the dashboard's npm
+# packages from web/package-lock.json and Debian's chromium for the `browser`
+# label) and runs the default test set: every ctest label except `long` and
+# `slurm` (so `api` and `browser` too), then the unit and API tests
 # once more under AddressSanitizer + UndefinedBehaviorSanitizer, then the
 # `slurm` label (installs slurm-wlm and munge, starts and stops its own
 # one-node cluster; fails clearly if they cannot be installed). Idempotent.
@@ -17,13 +19,35 @@ if [ "${1:-}" = "--long" ]; then
 fi
 
 "$here/scripts/setup.sh" "$here/build"
-ctest --test-dir "$here/build" -LE 'long|slurm' --output-on-failure -j "$jobs"
 
-# Sanitizer pass over the unit tests (debug info, no benchmarks).
+# The dashboard's packages (Chart.js, playwright-core) exactly as locked, and
+# a browser for the `browser` label: Debian's chromium (and node/npm when the
+# machine has none).
+browser_packages=(chromium)
+command -v npm >/dev/null 2>&1 || browser_packages+=(nodejs npm)
+missing=()
+for p in "${browser_packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "test: installing ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get update -q
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+(cd "$here/web" && npm ci --no-audit --no-fund)
+# cmake looks for node when it configures the `browser` test.
+cmake -S "$here" -B "$here/build" >/dev/null
+
+ctest --test-dir "$here/build" -LE 'long|slurm' --output-on-failure -j "$jobs"
+echo "test: dashboard screenshot in $here/build/test-artifacts/dashboard.png"
+
+# Sanitizer pass over the unit and API tests (debug info, no benchmarks).
 "$here/scripts/setup.sh" "$here/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSPLAT_SANITIZE=ON -DSPLAT_BUILD_BENCHMARKS=OFF
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  ctest --test-dir "$here/build-asan" -L unit --output-on-failure -j "$jobs"
+  ctest --test-dir "$here/build-asan" -L 'unit|api' --output-on-failure -j "$jobs"
 
 # Slurm executor against a real one-node cluster (label `slurm`).
 "$here/tests/slurm/cluster.sh" install

@@ -1,0 +1,931 @@
+#include "api/server.hpp"
+
+#include <arpa/inet.h>
+#include <httplib.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <deque>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+
+#include "api/runner.hpp"
+#include "campaign/queries.hpp"
+#include "campaign/sha256.hpp"
+#include "campaign/store.hpp"
+#include "campaign/window_rows.hpp"
+#include "solver/build_info.hpp"
+#include "solver/input/material_io.hpp"
+#include "solver/input/schema.hpp"
+#include "solver/io/result_file.hpp"
+
+namespace splat::api {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+bool is_loopback_host(const std::string& host) {
+  if (host == "localhost" || host == "::1" || host == "[::1]") return true;
+  // Only a numeric IPv4 address in 127.0.0.0/8 ("127.example.org" is a name
+  // that may resolve anywhere).
+  in_addr a{};
+  if (inet_pton(AF_INET, host.c_str(), &a) != 1) return false;
+  return (ntohl(a.s_addr) >> 24) == 127;
+}
+
+bool constant_time_equal(const std::string& a, const std::string& b) {
+  const std::string da = campaign::sha256_hex(a);
+  const std::string db = campaign::sha256_hex(b);
+  unsigned diff = 0;
+  for (std::size_t i = 0; i < da.size(); ++i) {
+    diff |= static_cast<unsigned>(static_cast<unsigned char>(da[i]) ^
+                                  static_cast<unsigned char>(db[i]));
+  }
+  return diff == 0;
+}
+
+namespace {
+
+constexpr const char* k_prefix = "/api/v1";
+constexpr std::size_t k_max_history_points = 2000;
+constexpr std::size_t k_max_idempotency_keys = 10000;  // remembered submissions
+
+// An error answered as an RFC 9457 problem document.
+struct Problem {
+  int status = 400;
+  std::string slug;  // short machine name, e.g. "invalid-body"
+  std::string title;
+  std::string detail;
+  json errors = json::array();  // [{"pointer": "/a/b", "detail": "..."}] or {"parameter": ...}
+};
+
+[[noreturn]] void fail(int status, std::string slug, std::string title, std::string detail,
+                       json errors = json::array()) {
+  throw Problem{status, std::move(slug), std::move(title), std::move(detail), std::move(errors)};
+}
+
+json errors_of(const std::vector<SchemaViolation>& violations) {
+  json e = json::array();
+  for (const SchemaViolation& v : violations)
+    e.push_back({{"pointer", v.pointer}, {"detail", v.message}});
+  return e;
+}
+
+const char* reason_phrase(int status) {
+  switch (status) {
+    case 400:
+      return "Bad Request";
+    case 401:
+      return "Unauthorized";
+    case 403:
+      return "Forbidden";
+    case 404:
+      return "Not Found";
+    case 405:
+      return "Method Not Allowed";
+    case 409:
+      return "Conflict";
+    case 413:
+      return "Content Too Large";
+    case 415:
+      return "Unsupported Media Type";
+    case 422:
+      return "Unprocessable Content";
+    case 500:
+      return "Internal Server Error";
+    case 503:
+      return "Service Unavailable";
+    default:
+      return "Error";
+  }
+}
+
+void write_problem(const httplib::Request& req, httplib::Response& res, const Problem& p) {
+  json doc = {{"type", p.slug.empty() ? std::string("about:blank") : "urn:splat:problem:" + p.slug},
+              {"title", p.title.empty() ? std::string(reason_phrase(p.status)) : p.title},
+              {"status", p.status},
+              {"detail", p.detail},
+              {"instance", req.path}};
+  if (!p.errors.empty()) doc["errors"] = p.errors;
+  res.status = p.status;
+  res.set_content(doc.dump(), "application/problem+json");
+}
+
+std::string etag_of(const std::string& body) {
+  // Built by appending: GCC 12 warns falsely (-Wrestrict) on "\"" + s + "\"".
+  std::string tag(1, '"');
+  tag.append(campaign::sha256_hex(body), 0, 32);
+  tag.push_back('"');
+  return tag;
+}
+
+bool etag_matches(const std::string& if_none_match, const std::string& etag) {
+  if (if_none_match.empty()) return false;
+  if (if_none_match.find('*') != std::string::npos) return true;
+  // A list of (possibly weak, W/"...") tags: the opaque part must appear.
+  return if_none_match.find(etag) != std::string::npos;
+}
+
+// A 200 JSON answer with an ETag; 304 when the client already has it.
+void reply_json(const httplib::Request& req, httplib::Response& res, const json& doc,
+                int status = 200) {
+  std::string body = doc.dump();
+  if (status == 200) {
+    const std::string etag = etag_of(body);
+    res.set_header("ETag", etag);
+    res.set_header("Cache-Control", "no-cache");
+    if (etag_matches(req.get_header_value("If-None-Match"), etag)) {
+      res.status = 304;
+      return;
+    }
+  }
+  res.status = status;
+  res.set_content(std::move(body), "application/json");
+}
+
+std::optional<std::int64_t> parse_int(const std::string& s) {
+  std::int64_t v = 0;
+  const char* end = s.data() + s.size();
+  const auto r = std::from_chars(s.data(), end, v);
+  if (r.ec != std::errc() || r.ptr != end) return std::nullopt;
+  return v;
+}
+
+std::int64_t path_id(const httplib::Request& req) {
+  const auto v = parse_int(req.matches[1]);
+  if (!v || *v <= 0)
+    fail(404, "not-found", "Not Found", "no campaign " + std::string(req.matches[1]));
+  return *v;
+}
+
+json param_error(const std::string& name, const std::string& detail) {
+  return json::array({{{"parameter", name}, {"detail", detail}}});
+}
+
+int page_size_of(const httplib::Request& req, const ServerOptions& o) {
+  if (!req.has_param("page_size")) return o.default_page_size;
+  const auto v = parse_int(req.get_param_value("page_size"));
+  if (!v || *v < 1 || *v > o.max_page_size) {
+    fail(400, "invalid-parameter", "Invalid query parameter",
+         "page_size must be an integer from 1 to " + std::to_string(o.max_page_size),
+         param_error("page_size",
+                     "must be an integer from 1 to " + std::to_string(o.max_page_size)));
+  }
+  return static_cast<int>(*v);
+}
+
+// Page tokens are opaque to clients: a letter and a number.
+std::int64_t page_token_of(const httplib::Request& req, char kind) {
+  if (!req.has_param("page_token")) return 0;
+  const std::string t = req.get_param_value("page_token");
+  std::optional<std::int64_t> v;
+  if (t.size() > 1 && t[0] == kind) v = parse_int(t.substr(1));
+  if (!v || *v < 0) {
+    fail(400, "invalid-parameter", "Invalid query parameter",
+         "page_token is not one this server gave out",
+         param_error("page_token", "not a token from a previous page"));
+  }
+  return *v;
+}
+
+json nullable(const std::optional<double>& v) {
+  return v ? json(*v) : json(nullptr);
+}
+
+json counts_json(const campaign::JobCounts& c) {
+  return {{"queued", c.queued}, {"running", c.running},     {"succeeded", c.succeeded},
+          {"failed", c.failed}, {"cancelled", c.cancelled}, {"timed_out", c.timed_out},
+          {"total", c.total()}};
+}
+
+// "particle/substrate" material names of a scene, or null when it has none
+// (two-mass scenes) or they are inline documents.
+json material_pair(const json& scene) {
+  auto name = [](const json& m) -> std::optional<std::string> {
+    if (m.is_string()) return m.get<std::string>();
+    if (m.is_object() && m.contains("base") && m["base"].is_string()) {
+      return m["base"].get<std::string>();
+    }
+    return std::nullopt;
+  };
+  if (scene.contains("particle_impact")) {
+    const json& pi = scene["particle_impact"];
+    const auto p = name(pi.value("/particle/material"_json_pointer, json()));
+    if (!p) return nullptr;
+    const json sub = pi.contains("substrate") ? pi["substrate"].value("material", json()) : json();
+    const auto s = sub.is_null() ? p : name(sub);
+    if (!s) return nullptr;
+    return *p + "/" + *s;
+  }
+  if (scene.contains("bodies") && scene["bodies"].is_array()) {
+    std::string out;
+    for (const json& b : scene["bodies"]) {
+      const auto n = name(b.value("material", json()));
+      if (!n) return nullptr;
+      out += (out.empty() ? "" : "/") + *n;
+    }
+    return out.empty() ? json(nullptr) : json(out);
+  }
+  return nullptr;
+}
+
+// Every material reference of an uploaded scene must name a library material:
+// paths would make the server read its own files.
+void check_material_names(const json& doc, const std::string& pointer,
+                          const std::set<std::string>& names, std::vector<SchemaViolation>& out) {
+  if (doc.is_object()) {
+    for (const auto& [k, v] : doc.items()) {
+      std::string escaped;
+      for (char ch : k)
+        escaped += ch == '~'   ? std::string("~0")
+                   : ch == '/' ? std::string("~1")
+                               : std::string(1, ch);
+      const std::string p = pointer + "/" + escaped;
+      if (k == "material" && v.is_string() && !names.count(v.get<std::string>())) {
+        out.push_back({p, "unknown material '" + v.get<std::string>() +
+                              "' (the library's names are listed at /api/v1/materials; files "
+                              "cannot be named over the API)"});
+      } else if (k == "material" && v.is_object() && v.contains("base") && v["base"].is_string() &&
+                 !names.count(v["base"].get<std::string>())) {
+        out.push_back({p + "/base", "unknown material '" + v["base"].get<std::string>() + "'"});
+      } else {
+        check_material_names(v, p, names, out);
+      }
+    }
+  } else if (doc.is_array()) {
+    for (std::size_t i = 0; i < doc.size(); ++i) {
+      check_material_names(doc[i], pointer + "/" + std::to_string(i), names, out);
+    }
+  }
+}
+
+bool inside(const fs::path& file, const fs::path& dir) {
+  std::error_code ec;
+  const fs::path f = fs::weakly_canonical(file, ec);
+  if (ec) return false;
+  const fs::path d = fs::weakly_canonical(dir, ec);
+  if (ec) return false;
+  const std::string fs_ = f.string(), ds = d.string() + "/";
+  return fs_.rfind(ds, 0) == 0;
+}
+
+}  // namespace
+
+struct Server::Impl {
+  ServerOptions o;
+  campaign::Store store;
+  fs::path jobs_dir;
+  CampaignRunner runner;
+  httplib::Server http;
+  std::mutex idempotency_mutex;
+  struct Remembered {
+    std::string body_hash;
+    std::int64_t campaign_id;
+  };
+  std::map<std::string, Remembered> idempotency;  // Idempotency-Key -> first submission
+  std::deque<std::string> idempotency_order;      // keys, oldest first
+  std::set<std::string> material_names;
+  std::atomic<bool> bound{false};
+  std::atomic<long long> requests{0};
+  std::once_flag stopped;
+
+  explicit Impl(ServerOptions opts)
+      : o(std::move(opts)),
+        store(o.db),
+        jobs_dir(o.db.string() + ".jobs"),
+        runner(store, RunnerOptions{o.workers, o.executor, o.job_program}) {
+    for (const std::string& n : material_names_list()) material_names.insert(n);
+    routes();
+  }
+
+  static std::vector<std::string> material_names_list() { return splat::material_names(); }
+
+  // --- documents -------------------------------------------------------------
+
+  json campaign_doc(const campaign::CampaignRecord& c, bool with_spec) {
+    const campaign::JobCounts n = store.job_counts(c.id);
+    const std::string self = std::string(k_prefix) + "/campaigns/" + std::to_string(c.id);
+    json spec = json::parse(c.spec, nullptr, false);
+    json doc = {{"id", c.id},
+                {"name", c.name},
+                {"description", spec.is_object() ? spec.value("description", "") : ""},
+                {"tags", json::parse(c.tags, nullptr, false)},
+                {"state", campaign::to_string(c.state)},
+                {"executor", c.executor},
+                {"priority", c.priority},
+                {"spec_hash", c.spec_hash},
+                {"material_pair",
+                 spec.is_object() ? material_pair(spec.value("base_scene", json())) : json()},
+                {"created_at", c.created_at},
+                {"finished_at", c.finished_at > 0 ? json(c.finished_at) : json(nullptr)},
+                {"jobs", counts_json(n)},
+                {"refinement_jobs", store.refinement_points_count(c.id)},
+                {"progress", n.total() > 0 ? double(n.finished()) / n.total() : 0.0},
+                {"estimated_seconds_left", nullptr},
+                {"running_now", runner.running() == c.id},
+                {"links",
+                 {{"self", self},
+                  {"jobs", self + "/jobs"},
+                  {"windows", self + "/windows"},
+                  {"cancel", self + "/cancel"}}}};
+    const int left = n.queued + n.running;
+    if (left == 0 && c.state != campaign::CampaignState::active) {
+      doc["estimated_seconds_left"] = 0.0;
+    } else if (left > 0) {
+      const campaign::CampaignTiming t = campaign::campaign_timing(store, c.id);
+      if (t.timed_jobs > 0) {
+        doc["estimated_seconds_left"] =
+            t.wall_seconds / t.timed_jobs * left / std::max(1, o.workers);
+      }
+    }
+    if (with_spec) doc["spec"] = spec;
+    return doc;
+  }
+
+  campaign::CampaignRecord campaign_or_404(std::int64_t id) {
+    auto c = store.campaign(id);
+    if (!c) fail(404, "not-found", "Not Found", "no campaign " + std::to_string(id));
+    return *c;
+  }
+
+  // --- routes ----------------------------------------------------------------
+
+  template <class F>
+  httplib::Server::Handler guarded(F f) {
+    return [this, f](const httplib::Request& req, httplib::Response& res) {
+      ++requests;
+      try {
+        f(req, res);
+      } catch (const Problem& p) {
+        write_problem(req, res, p);
+      } catch (const InputError& e) {
+        write_problem(req, res,
+                      {422, "invalid-body", "Invalid campaign", "the body breaks the rules below",
+                       errors_of(e.violations())});
+      } catch (const std::exception& e) {
+        write_problem(req, res,
+                      {500, "internal", "Internal Server Error", e.what(), json::array()});
+      }
+    };
+  }
+
+  void routes() {
+    const std::string p = k_prefix;
+    http.set_payload_max_length(o.max_body_bytes);
+    // Small JSON answers on kept-alive connections: without TCP_NODELAY,
+    // Nagle's algorithm and delayed ACKs hold each one back ~40 ms.
+    http.set_tcp_nodelay(true);
+    http.set_keep_alive_max_count(1000);
+    http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+      if (o.token.empty()) return httplib::Server::HandlerResponse::Unhandled;
+      if (req.method == "GET" || req.method == "HEAD" || req.method == "OPTIONS") {
+        return httplib::Server::HandlerResponse::Unhandled;
+      }
+      const std::string h = req.get_header_value("Authorization");
+      const std::string scheme = "Bearer ";
+      const bool ok = h.size() > scheme.size() && h.compare(0, scheme.size(), scheme) == 0 &&
+                      constant_time_equal(h.substr(scheme.size()), o.token);
+      if (ok) return httplib::Server::HandlerResponse::Unhandled;
+      res.set_header("WWW-Authenticate", "Bearer realm=\"splat\"");
+      write_problem(req, res,
+                    {401, "unauthorized", "Unauthorized",
+                     "this server needs `Authorization: Bearer <token>` on every request that "
+                     "changes something",
+                     json::array()});
+      return httplib::Server::HandlerResponse::Handled;
+    });
+    // Statuses the library answers itself (unknown route, body too large, ...)
+    // get a problem document too.
+    http.set_error_handler(httplib::Server::HandlerWithResponse(
+        [](const httplib::Request& req, httplib::Response& res) {
+          if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+          std::string detail;
+          if (res.status == 404) detail = "no resource at " + req.path;
+          if (res.status == 413) detail = "the request body is larger than this server accepts";
+          if (res.status == 405) detail = "method " + req.method + " is not allowed here";
+          write_problem(req, res,
+                        {res.status, res.status == 404 ? "not-found" : "",
+                         reason_phrase(res.status), detail, json::array()});
+          return httplib::Server::HandlerResponse::Handled;
+        }));
+    http.set_exception_handler(
+        [](const httplib::Request& req, httplib::Response& res, std::exception_ptr) {
+          write_problem(req, res, {500, "internal", "Internal Server Error", "", json::array()});
+        });
+
+    http.Get(p + "/health", guarded([this](const httplib::Request& req, httplib::Response& res) {
+               const auto running = runner.running();
+               reply_json(req, res,
+                          {{"status", "ok"},
+                           {"version", std::string(splat::version())},
+                           {"git_commit", std::string(splat::git_commit())},
+                           {"store_schema_version", store.schema_version()},
+                           {"running_campaign", running ? json(*running) : json(nullptr)},
+                           {"waiting_campaigns", runner.waiting()}});
+             }));
+    http.Get(p + "/metrics", guarded([this](const httplib::Request&, httplib::Response& res) {
+               res.set_content(metrics_text(), "text/plain; version=0.0.4; charset=utf-8");
+             }));
+    http.Get(p + "/materials", guarded([](const httplib::Request& req, httplib::Response& res) {
+               json list = json::array();
+               for (const std::string& n : splat::material_names()) {
+                 list.push_back({{"name", n}, {"document", splat::material_document(n)}});
+               }
+               reply_json(req, res, {{"materials", list}});
+             }));
+    http.Get(
+        p + R"(/schemas/([A-Za-z0-9_.-]+))",
+        guarded([](const httplib::Request& req, httplib::Response& res) {
+          std::string name = req.matches[1];
+          for (const char* suffix : {".schema.json", ".json"}) {
+            const std::string s = suffix;
+            if (name.size() > s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0) {
+              name.resize(name.size() - s.size());
+              break;
+            }
+          }
+          const auto names = splat::schema_names();
+          if (std::find(names.begin(), names.end(), name) == names.end()) {
+            fail(404, "not-found", "Not Found", "no schema '" + name + "'");
+          }
+          reply_json(req, res, splat::schema_document(name));
+        }));
+    http.Post(p + "/campaigns", guarded([this](const httplib::Request& req,
+                                               httplib::Response& res) { submit(req, res); }));
+    http.Get(p + "/campaigns", guarded([this](const httplib::Request& req, httplib::Response& res) {
+               const int size = page_size_of(req, o);
+               const std::int64_t before = page_token_of(req, 'b');
+               const auto page = campaign::campaigns_page(store, before, size + 1);
+               json list = json::array();
+               for (std::size_t i = 0; i < page.size() && i < std::size_t(size); ++i) {
+                 list.push_back(campaign_doc(page[i], false));
+               }
+               json next = nullptr;
+               if (page.size() > std::size_t(size))
+                 next = "b" + std::to_string(page[std::size_t(size) - 1].id);
+               reply_json(req, res, {{"campaigns", list}, {"next_page_token", next}});
+             }));
+    http.Get(p + R"(/campaigns/([0-9]+))",
+             guarded([this](const httplib::Request& req, httplib::Response& res) {
+               reply_json(req, res, campaign_doc(campaign_or_404(path_id(req)), true));
+             }));
+    http.Post(p + R"(/campaigns/([0-9]+)/cancel)",
+              guarded([this](const httplib::Request& req, httplib::Response& res) {
+                const std::int64_t id = path_id(req);
+                campaign_or_404(id);
+                const CancelResult r = runner.cancel(id);
+                if (r == CancelResult::unknown) fail(404, "not-found", "Not Found", "no campaign");
+                if (r == CancelResult::already_ended) {
+                  fail(409, "campaign-finished", "Campaign already finished",
+                       "campaign " + std::to_string(id) + " has finished; nothing to cancel");
+                }
+                reply_json(req, res, campaign_doc(campaign_or_404(id), false), 202);
+              }));
+    http.Get(
+        p + R"(/campaigns/([0-9]+)/jobs)",
+        guarded([this](const httplib::Request& req, httplib::Response& res) {
+          const std::int64_t id = path_id(req);
+          campaign_or_404(id);
+          const int size = page_size_of(req, o);
+          const std::int64_t offset = page_token_of(req, 'o');
+          std::optional<campaign::JobState> state;
+          if (req.has_param("state")) {
+            const std::string s = req.get_param_value("state");
+            try {
+              state = campaign::job_state_from_string(s);
+            } catch (const std::exception&) {
+              fail(400, "invalid-parameter", "Invalid query parameter",
+                   "state must be one of queued, running, succeeded, failed, cancelled, "
+                   "timed-out",
+                   param_error("state", "unknown job state '" + s + "'"));
+            }
+          }
+          const auto rows = campaign::campaign_jobs(store, id, state, offset, size + 1);
+          json list = json::array();
+          for (std::size_t i = 0; i < rows.size() && i < std::size_t(size); ++i) {
+            list.push_back(job_row(rows[i]));
+          }
+          json next = nullptr;
+          if (rows.size() > std::size_t(size)) next = "o" + std::to_string(offset + size);
+          reply_json(req, res, {{"campaign_id", id}, {"jobs", list}, {"next_page_token", next}});
+        }));
+    http.Get(p + R"(/campaigns/([0-9]+)/windows)",
+             guarded([this](const httplib::Request& req, httplib::Response& res) {
+               const std::int64_t id = path_id(req);
+               campaign_or_404(id);
+               reply_windows(req, res, store.windows(id), {{"campaign_id", id}});
+             }));
+    http.Get(p + "/windows", guarded([this](const httplib::Request& req, httplib::Response& res) {
+               std::vector<campaign::WindowRecord> all;
+               json ids = json::array();
+               for (const campaign::CampaignRecord& c : store.campaigns()) {
+                 if (!matches_filters(req, c)) continue;
+                 ids.push_back(c.id);
+                 for (auto& w : store.windows(c.id)) all.push_back(std::move(w));
+               }
+               reply_windows(req, res, all, {{"campaign_ids", ids}});
+             }));
+    http.Get(p + R"(/jobs/([0-9a-f]{64}))",
+             guarded([this](const httplib::Request& req, httplib::Response& res) {
+               reply_json(req, res, job_doc(req.matches[1]));
+             }));
+    http.Get(p + R"(/jobs/([0-9a-f]{64})/result\.h5)",
+             guarded([this](const httplib::Request& req, httplib::Response& res) {
+               send_result_file(req, res);
+             }));
+
+    if (!o.web_dir.empty()) http.set_mount_point("/", o.web_dir.string());
+    if (!o.vendor_dir.empty()) {
+      http.set_mount_point("/vendor/chart.js", (o.vendor_dir / "chart.js" / "dist").string());
+    }
+  }
+
+  bool matches_filters(const httplib::Request& req, const campaign::CampaignRecord& c) {
+    if (req.has_param("name") && req.get_param_value("name") != c.name) return false;
+    const json spec = json::parse(c.spec, nullptr, false);
+    if (req.has_param("tag")) {
+      const json tags = json::parse(c.tags, nullptr, false);
+      const std::string t = req.get_param_value("tag");
+      if (!tags.is_array() || std::find(tags.begin(), tags.end(), json(t)) == tags.end()) {
+        return false;
+      }
+    }
+    if (req.has_param("material_pair")) {
+      const json pair = spec.is_object() ? material_pair(spec.value("base_scene", json())) : json();
+      if (!pair.is_string() || pair.get<std::string>() != req.get_param_value("material_pair")) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  void reply_windows(const httplib::Request& req, httplib::Response& res,
+                     const std::vector<campaign::WindowRecord>& windows, json doc) {
+    const bool csv = req.get_param_value("format") == "csv" ||
+                     (req.get_header_value("Accept").find("text/csv") != std::string::npos);
+    if (req.has_param("format") && req.get_param_value("format") != "csv" &&
+        req.get_param_value("format") != "json") {
+      fail(400, "invalid-parameter", "Invalid query parameter", "format must be json or csv",
+           param_error("format", "must be json or csv"));
+    }
+    if (csv) {
+      std::string body = campaign::window_rows_csv(windows);
+      const std::string etag = etag_of(body);
+      res.set_header("ETag", etag);
+      res.set_header("Cache-Control", "no-cache");
+      res.set_header("Content-Disposition", "attachment; filename=\"windows.csv\"");
+      if (etag_matches(req.get_header_value("If-None-Match"), etag)) {
+        res.status = 304;
+        return;
+      }
+      res.set_content(std::move(body), "text/csv; charset=utf-8");
+      return;
+    }
+    doc["windows"] = campaign::window_rows(windows);
+    reply_json(req, res, doc);
+  }
+
+  json job_row(const campaign::CampaignJobRow& r) {
+    return {{"id", r.point.job_hash},
+            {"params", json::parse(r.point.params)},
+            {"velocity", r.point.velocity},
+            {"origin", r.point.origin},
+            {"state", campaign::to_string(r.state)},
+            {"outcome", r.outcome ? json(*r.outcome) : json(nullptr)},
+            {"attempts", r.attempts},
+            {"started_at", nullable(r.started_at)},
+            {"finished_at", nullable(r.finished_at)},
+            {"wall_seconds", nullable(r.wall_seconds)},
+            {"exit_reason", r.exit_reason},
+            {"links", {{"self", std::string(k_prefix) + "/jobs/" + r.point.job_hash}}}};
+  }
+
+  // The result file of a job, if it is a regular file inside the jobs folder.
+  std::optional<fs::path> result_file(const std::optional<campaign::ResultRecord>& r) {
+    if (!r || r->hdf5_path.empty()) return std::nullopt;
+    const fs::path f = r->hdf5_path;
+    if (!inside(f, jobs_dir)) return std::nullopt;
+    std::error_code ec;
+    if (!fs::is_regular_file(f, ec)) return std::nullopt;
+    return f;
+  }
+
+  json job_doc(const std::string& hash) {
+    const auto j = store.job(hash);
+    if (!j) fail(404, "not-found", "Not Found", "no job " + hash);
+    const auto r = store.result(hash);
+    json uses = json::array();
+    for (const campaign::JobUse& u : campaign::job_uses(store, hash)) {
+      uses.push_back({{"campaign_id", u.campaign_id},
+                      {"params", json::parse(u.point.params)},
+                      {"velocity", u.point.velocity},
+                      {"origin", u.point.origin}});
+    }
+    json doc = {
+        {"id", j->hash},
+        {"state", campaign::to_string(j->state)},
+        {"attempts", j->attempts},
+        {"solver_version", j->solver_version},
+        {"host", j->host},
+        {"created_at", j->created_at},
+        {"started_at", nullable(j->started_at)},
+        {"finished_at", nullable(j->finished_at)},
+        {"wall_seconds", nullable(j->wall_seconds)},
+        {"threads", j->threads ? json(*j->threads) : json(nullptr)},
+        {"exit_reason", j->exit_reason},
+        {"scene", json::parse(j->scene)},
+        {"uses", uses},
+        {"result", nullptr},
+        {"histories", nullptr},
+        {"links", {{"self", std::string(k_prefix) + "/jobs/" + hash}, {"result_h5", nullptr}}}};
+    if (r) {
+      doc["result"] = {{"outcome", r->outcome},
+                       {"reason", r->reason},
+                       {"summary", json::parse(r->summary, nullptr, false)}};
+    }
+    if (const auto f = result_file(r)) {
+      doc["links"]["result_h5"] = std::string(k_prefix) + "/jobs/" + hash + "/result.h5";
+      doc["histories"] = histories(*f);
+    }
+    return doc;
+  }
+
+  // Every history column of the result file, at most k_max_history_points
+  // rows (evenly strided, last row kept), with its unit.
+  static json histories(const fs::path& h5) {
+    // Called from several server threads at once: Debian's HDF5 is built
+    // thread-safe (h5cc -showconfig: "Threadsafety: yes").
+    try {
+      const splat::ResultSummary s = splat::read_result_summary(h5);
+      json cols = json::object();
+      json units = json::object();
+      const std::size_t n = s.history_rows;
+      const std::size_t stride =
+          std::max<std::size_t>(1, (n + k_max_history_points - 1) / k_max_history_points);
+      for (const std::string& c : s.history_columns) {
+        const std::vector<double> v = splat::read_history(h5, c);
+        json a = json::array();
+        for (std::size_t i = 0; i < v.size(); i += stride)
+          a.push_back(std::isfinite(v[i]) ? json(v[i]) : json(nullptr));
+        if (!v.empty() && (v.size() - 1) % stride != 0)
+          a.push_back(std::isfinite(v.back()) ? json(v.back()) : json(nullptr));
+        cols[c] = std::move(a);
+        try {
+          units[c] = splat::read_unit(h5, "/history/" + c);
+        } catch (const std::exception&) {
+          units[c] = nullptr;
+        }
+      }
+      return {{"rows", n}, {"stride", stride}, {"columns", cols}, {"units", units}};
+    } catch (const std::exception& e) {
+      return {{"error", e.what()}};
+    }
+  }
+
+  void send_result_file(const httplib::Request& req, httplib::Response& res) {
+    const std::string hash = req.matches[1];
+    if (!store.job(hash)) fail(404, "not-found", "Not Found", "no job " + hash);
+    const auto f = result_file(store.result(hash));
+    if (!f) fail(404, "not-found", "Not Found", "job " + hash + " has no result file");
+    const std::uintmax_t size = fs::file_size(*f);
+    auto in = std::make_shared<std::ifstream>(*f, std::ios::binary);
+    res.set_header("Content-Disposition", "attachment; filename=\"" + hash.substr(0, 16) + ".h5\"");
+    res.set_content_provider(static_cast<std::size_t>(size), "application/x-hdf5",
+                             [in](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                               std::array<char, 65536> buf{};
+                               in->seekg(static_cast<std::streamoff>(offset));
+                               const std::size_t want = std::min(length, buf.size());
+                               in->read(buf.data(), static_cast<std::streamsize>(want));
+                               const std::streamsize got = in->gcount();
+                               if (got <= 0) return false;
+                               return sink.write(buf.data(), static_cast<std::size_t>(got));
+                             });
+  }
+
+  // --- submission ------------------------------------------------------------
+
+  void submit(const httplib::Request& req, httplib::Response& res) {
+    const std::string type = req.get_header_value("Content-Type");
+    if (type.rfind("application/json", 0) != 0) {
+      fail(415, "unsupported-media-type", "Unsupported Media Type",
+           "send the campaign as `Content-Type: application/json`");
+    }
+    json doc;
+    try {
+      doc = splat::parse_json_text(req.body, "the request body");
+    } catch (const InputError& e) {
+      fail(400, "malformed-json", "Malformed JSON", e.what(), errors_of(e.violations()));
+    }
+    const std::string key = req.get_header_value("Idempotency-Key");
+    if (key.size() > 255) {
+      fail(400, "invalid-header", "Invalid header",
+           "Idempotency-Key is longer than 255 characters");
+    }
+    const std::string body_hash = campaign::sha256_hex(campaign::canonical_text(doc));
+    std::unique_lock lock(idempotency_mutex, std::defer_lock);
+    if (!key.empty()) {
+      lock.lock();
+      const auto it = idempotency.find(key);
+      if (it != idempotency.end()) {
+        if (it->second.body_hash != body_hash) {
+          fail(422, "idempotency-key-reused", "Idempotency-Key reused",
+               "this Idempotency-Key was used with a different body");
+        }
+        res.set_header("Location", std::string(k_prefix) + "/campaigns/" +
+                                       std::to_string(it->second.campaign_id));
+        res.set_header("Idempotent-Replayed", "true");
+        reply_json(req, res, campaign_doc(campaign_or_404(it->second.campaign_id), true), 202);
+        return;
+      }
+    }
+    const campaign::CampaignSpec spec = checked_spec(doc);
+    const std::string version = campaign::solver_version_string();
+    const auto jobs = campaign::expand(spec, campaign::splat_scene_resolver(), version);
+
+    campaign::CampaignRecord rec;
+    rec.name = spec.name;
+    rec.spec_hash = campaign::spec_hash(spec);
+    rec.spec = spec.document.dump();
+    rec.tags = json(spec.tags).dump();
+    rec.executor = spec.executor == campaign::ExecutorKind::slurm ? "slurm" : "local";
+    rec.priority = spec.priority;
+    const std::int64_t id = store.open_campaign(rec);
+    std::vector<campaign::NewPoint> pts;
+    for (const campaign::ExpandedJob& j : jobs) {
+      pts.push_back({{j.params_key, j.params_key, j.velocity, j.hash, "grid"},
+                     campaign::canonical_text(j.scene),
+                     version});
+    }
+    store.add_points(id, pts, false);
+    if (!key.empty()) {
+      // Bounded memory: the oldest keys are forgotten first.
+      if (idempotency_order.size() >= k_max_idempotency_keys) {
+        idempotency.erase(idempotency_order.front());
+        idempotency_order.pop_front();
+      }
+      idempotency[key] = {body_hash, id};
+      idempotency_order.push_back(key);
+    }
+    if (o.run_campaigns) runner.submit(id);
+    res.set_header("Location", std::string(k_prefix) + "/campaigns/" + std::to_string(id));
+    reply_json(req, res, campaign_doc(campaign_or_404(id), true), 202);
+  }
+
+  // Everything that can be wrong with a submitted campaign, found before
+  // anything is written.
+  campaign::CampaignSpec checked_spec(const json& doc) {
+    std::vector<SchemaViolation> v = splat::validate("campaign", doc);
+    if (!v.empty()) throw InputError(v);
+    if (doc["base_scene"].is_string()) {
+      throw InputError(std::vector<SchemaViolation>{
+          {"/base_scene",
+           "must be the scene document itself over the API (a path would be read on the server)"}});
+    }
+    // The velocity range's length, before read_campaign lists it.
+    if (doc["velocity"].contains("range")) {
+      const json& r = doc["velocity"]["range"];
+      const double n =
+          std::floor((r["to"].get<double>() - r["from"].get<double>()) / r["step"].get<double>()) +
+          1;
+      if (n > o.max_jobs_per_campaign) {
+        fail(422, "grid-too-large", "Grid too large",
+             "the velocity range alone has " + std::to_string(static_cast<long long>(n)) +
+                 " points; this server takes at most " + std::to_string(o.max_jobs_per_campaign) +
+                 " jobs per campaign",
+             json::array({{{"pointer", "/velocity/range"},
+                           {"detail", "more than " + std::to_string(o.max_jobs_per_campaign) +
+                                          " velocities"}}}));
+      }
+    }
+    check_material_names(doc["base_scene"], "/base_scene", material_names, v);
+    if (doc.contains("fields")) {
+      for (std::size_t i = 0; i < doc["fields"].size(); ++i) {
+        const json& f = doc["fields"][i];
+        const std::string ptr = f["pointer"].get<std::string>();
+        const bool is_material =
+            ptr.size() >= 9 && ptr.compare(ptr.size() - 9, 9, "/material") == 0;
+        if (!is_material) continue;
+        for (std::size_t k = 0; k < f["values"].size(); ++k) {
+          const json& val = f["values"][k];
+          if (val.is_string() && !material_names.count(val.get<std::string>())) {
+            v.push_back({"/fields/" + std::to_string(i) + "/values/" + std::to_string(k),
+                         "unknown material '" + val.get<std::string>() + "'"});
+          }
+        }
+      }
+    }
+    if (!v.empty()) throw InputError(v);
+    campaign::CampaignSpec spec = campaign::read_campaign(doc);
+    double grid = static_cast<double>(spec.velocities.size());
+    for (const campaign::ParameterAxis& a : spec.axes) grid *= static_cast<double>(a.values.size());
+    const double extra = spec.refinement ? spec.refinement->max_extra_jobs : 0;
+    if (grid + extra > o.max_jobs_per_campaign) {
+      fail(422, "grid-too-large", "Grid too large",
+           "the campaign asks for " + std::to_string(static_cast<long long>(grid)) +
+               " grid jobs and up to " + std::to_string(static_cast<long long>(extra)) +
+               " refinement jobs; this server takes at most " +
+               std::to_string(o.max_jobs_per_campaign) + " per campaign",
+           json::array({{{"pointer", ""},
+                         {"detail", "grid points x parameter sets + refinement/max_extra_jobs > " +
+                                        std::to_string(o.max_jobs_per_campaign)}}}));
+    }
+    return spec;
+  }
+
+  // --- metrics ---------------------------------------------------------------
+
+  std::string metrics_text() {
+    const campaign::JobCounts c = campaign::all_job_counts(store);
+    std::string s;
+    s += "# HELP splat_jobs Jobs in the store by state.\n# TYPE splat_jobs gauge\n";
+    const std::pair<const char*, int> states[] = {
+        {"queued", c.queued}, {"running", c.running},     {"succeeded", c.succeeded},
+        {"failed", c.failed}, {"cancelled", c.cancelled}, {"timed-out", c.timed_out}};
+    for (const auto& [name, n] : states) {
+      s += "splat_jobs{state=\"" + std::string(name) + "\"} " + std::to_string(n) + "\n";
+    }
+    s += "# HELP splat_queue_length Jobs waiting to run (queued in the store).\n"
+         "# TYPE splat_queue_length gauge\nsplat_queue_length " +
+         std::to_string(c.queued) + "\n";
+    s += "# HELP splat_campaigns_waiting Campaigns waiting for this server's runner.\n"
+         "# TYPE splat_campaigns_waiting gauge\nsplat_campaigns_waiting " +
+         std::to_string(runner.waiting()) + "\n";
+    const std::vector<double> walls = campaign::all_wall_seconds(store);
+    constexpr double bounds[] = {0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100, 300, 1000, 3600};
+    s += "# HELP splat_job_duration_seconds Wall time of finished jobs.\n"
+         "# TYPE splat_job_duration_seconds histogram\n";
+    double sum = 0;
+    for (double w : walls) sum += w;
+    for (double b : bounds) {
+      const auto n = std::count_if(walls.begin(), walls.end(), [b](double w) { return w <= b; });
+      char le[32];
+      std::snprintf(le, sizeof le, "%g", b);
+      s += "splat_job_duration_seconds_bucket{le=\"" + std::string(le) + "\"} " +
+           std::to_string(n) + "\n";
+    }
+    char sum_text[64];
+    std::snprintf(sum_text, sizeof sum_text, "%.9g", sum);
+    s += "splat_job_duration_seconds_bucket{le=\"+Inf\"} " + std::to_string(walls.size()) + "\n";
+    s += "splat_job_duration_seconds_sum " + std::string(sum_text) + "\n";
+    s += "splat_job_duration_seconds_count " + std::to_string(walls.size()) + "\n";
+    s += "# HELP splat_http_requests_total API requests answered.\n"
+         "# TYPE splat_http_requests_total counter\nsplat_http_requests_total " +
+         std::to_string(requests.load()) + "\n";
+    return s;
+  }
+};
+
+Server::Server(ServerOptions options) {
+  if (options.token.empty() && !is_loopback_host(options.host)) {
+    throw std::invalid_argument("refusing to listen on " + options.host +
+                                " without --token-file: only loopback addresses may go without a "
+                                "token");
+  }
+  impl_ = std::make_unique<Impl>(std::move(options));
+}
+
+Server::~Server() {
+  stop();
+}
+
+int Server::bind() {
+  int port = 0;
+  if (impl_->o.port == 0) {
+    port = impl_->http.bind_to_any_port(impl_->o.host);
+  } else {
+    port = impl_->http.bind_to_port(impl_->o.host, impl_->o.port) ? impl_->o.port : -1;
+  }
+  if (port <= 0) {
+    throw std::runtime_error("cannot listen on " + impl_->o.host + ":" +
+                             std::to_string(impl_->o.port));
+  }
+  impl_->bound = true;
+  return port;
+}
+
+void Server::serve() {
+  if (impl_->o.run_campaigns) impl_->runner.resume_all();
+  impl_->http.listen_after_bind();
+}
+
+void Server::stop() {
+  if (!impl_) return;
+  std::call_once(impl_->stopped, [this] {
+    impl_->http.stop();
+    impl_->runner.shutdown();
+  });
+}
+
+bool Server::ready() const {
+  return impl_->bound && impl_->http.is_running();
+}
+
+}  // namespace splat::api

@@ -1,0 +1,183 @@
+// `splat serve` as a process: prints its OS-chosen port, answers health,
+// metrics, materials and schemas; SIGTERM stops it gracefully and leaves the
+// running campaign resumable; the next server on the same store finishes it
+// without redoing finished jobs. Also the command-line refusal of a public
+// address without a token.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+
+#include "tests/api/api_fixture.hpp"
+
+namespace splat::api_test {
+namespace {
+
+// A child `splat serve`; its stdout's first line gives the port.
+class ServeProcess {
+ public:
+  explicit ServeProcess(std::vector<std::string> args) {
+    int out[2];
+    if (pipe(out) != 0) throw std::runtime_error("pipe");
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(out[1], STDOUT_FILENO);
+      close(out[0]);
+      close(out[1]);
+      std::vector<char*> argv;
+      argv.push_back(const_cast<char*>(SPLAT_BINARY));
+      argv.push_back(const_cast<char*>("serve"));
+      for (std::string& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      execv(SPLAT_BINARY, argv.data());
+      _exit(127);
+    }
+    close(out[1]);
+    out_ = fdopen(out[0], "r");
+    char line[256] = {};
+    if (out_ && std::fgets(line, sizeof line, out_)) {
+      const std::string s = line;
+      const auto colon = s.rfind(':');
+      if (s.rfind("listening on http://", 0) == 0 && colon != std::string::npos) {
+        port_ = std::stoi(s.substr(colon + 1));
+      }
+    }
+  }
+  ~ServeProcess() {
+    if (pid_ > 0 && !exited_) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+    if (out_) std::fclose(out_);
+  }
+  int port() const { return port_; }
+  // Sends `sig` and waits up to `seconds` for the exit; returns the exit code
+  // (-1 if it did not exit by itself in time, or died from a signal).
+  int stop(int sig, double seconds) {
+    kill(pid_, sig);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < deadline) {
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        exited_ = true;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return -1;
+  }
+  int wait_exit() {
+    int status = 0;
+    waitpid(pid_, &status, 0);
+    exited_ = true;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* out_ = nullptr;
+  int port_ = 0;
+  bool exited_ = false;
+};
+
+TEST(api_service, health_metrics_materials_schemas) {
+  TempDir dir;
+  ServerHandle server(options_for(dir));
+  httplib::Client c = server.client();
+  auto h = c.Get("/api/v1/health");
+  ASSERT_EQ(h->status, 200);
+  EXPECT_EQ(schema_errors("api_health", body_json(h)), "");
+  auto m = c.Get("/api/v1/materials");
+  ASSERT_EQ(m->status, 200);
+  EXPECT_EQ(schema_errors("api_materials", body_json(m)), "");
+  EXPECT_GT(body_json(m)["materials"].size(), 0u);
+  for (const std::string& name : schema_names()) {
+    auto s = c.Get(("/api/v1/schemas/" + name).c_str());
+    ASSERT_EQ(s->status, 200) << name;
+    EXPECT_EQ(body_json(s), schema_document(name)) << name;
+  }
+  EXPECT_EQ(c.Get("/api/v1/schemas/campaign.schema.json")->status, 200);
+  // Metrics after one small campaign: the job counts and durations add up.
+  json spec = small_campaign("metrics");
+  auto r = post_json(c, "/api/v1/campaigns", spec);
+  ASSERT_EQ(r->status, 202);
+  ASSERT_EQ(wait_for_campaign(c, body_json(r)["id"])["state"], "finished");
+  auto t = c.Get("/api/v1/metrics");
+  ASSERT_EQ(t->status, 200);
+  EXPECT_EQ(t->get_header_value("Content-Type"), "text/plain; version=0.0.4; charset=utf-8");
+  const std::string& text = t->body;
+  EXPECT_NE(text.find("splat_jobs{state=\"succeeded\"} 10\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("splat_jobs{state=\"queued\"} 0\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("splat_queue_length 0\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("splat_job_duration_seconds_bucket{le=\"+Inf\"} 10\n"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("splat_job_duration_seconds_count 10\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("# TYPE splat_job_duration_seconds histogram"), std::string::npos);
+}
+
+TEST(api_service, sigterm_leaves_the_campaign_resumable) {
+  TempDir dir;
+  const std::string db = (dir.path / "store.db").string();
+  json spec = small_campaign("resumable");
+  spec["velocity"] = {{"range", {{"from", 0.05}, {"to", 2.0}, {"step", 0.05}}}};  // 80 jobs
+  std::int64_t id = 0;
+  int succeeded_at_stop = 0;
+  {
+    ServeProcess p({"--db", db, "--port", "0", "--workers", "1"});
+    ASSERT_GT(p.port(), 0);
+    httplib::Client c("127.0.0.1", p.port());
+    auto r = post_json(c, "/api/v1/campaigns", spec);
+    ASSERT_EQ(r->status, 202) << r->body;
+    id = body_json(r)["id"];
+    for (int i = 0; i < 500; ++i) {
+      if (body_json(c.Get(
+              ("/api/v1/campaigns/" + std::to_string(id)).c_str()))["jobs"]["succeeded"] >= 3) {
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_EQ(p.stop(SIGTERM, 20), 0);
+  }
+  {
+    campaign::Store store(db);
+    const auto c = store.campaign(id);
+    ASSERT_TRUE(c);
+    EXPECT_EQ(c->state, campaign::CampaignState::active);  // not cancelled: to be resumed
+    const campaign::JobCounts n = store.job_counts(id);
+    EXPECT_EQ(n.running, 0);
+    EXPECT_EQ(n.failed, 0);
+    EXPECT_EQ(n.total(), 80);
+    EXPECT_LT(n.succeeded, 80) << "the campaign finished before the stop; nothing was tested";
+    succeeded_at_stop = n.succeeded;
+  }
+  {
+    ServeProcess p({"--db", db, "--port", "0", "--workers", "2"});
+    ASSERT_GT(p.port(), 0);
+    httplib::Client c("127.0.0.1", p.port());
+    const json done = wait_for_campaign(c, id, 120);
+    EXPECT_EQ(done["state"], "finished") << done.dump();
+    EXPECT_EQ(done["jobs"]["succeeded"], 80);
+    EXPECT_EQ(p.stop(SIGINT, 20), 0);
+  }
+  // Jobs finished before the stop ran once; none ran more than twice.
+  campaign::Store store(db);
+  int once = 0;
+  for (const campaign::PointStatus& ps : store.points(id)) {
+    const auto j = store.job(ps.point.job_hash);
+    ASSERT_TRUE(j);
+    EXPECT_LE(j->attempts, 2);
+    if (j->attempts == 1) ++once;
+  }
+  EXPECT_GE(once, succeeded_at_stop);
+}
+
+TEST(api_service, refuses_a_public_address_without_a_token) {
+  TempDir dir;
+  ServeProcess p({"--db", (dir.path / "s.db").string(), "--host", "0.0.0.0", "--port", "0"});
+  EXPECT_EQ(p.port(), 0);
+  EXPECT_EQ(p.wait_exit(), 2);
+}
+
+}  // namespace
+}  // namespace splat::api_test
