@@ -65,6 +65,10 @@ ImpactRun::ImpactRun(const ImpactSpec& spec, const Model& model, double max_time
   for (std::size_t c = 0; c < model.contacts.size(); ++c) {
     if (model.contacts[c].slave_body() == spec.particle) contact_ = static_cast<int>(c);
   }
+  if (contact_ >= 0) {
+    const auto& adhesion = model.contacts[contact_].settings().adhesion;
+    links_hold_ = adhesion.has_value() && adhesion->G_c > 0.0;
+  }
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   if (particle_ >= 0) {
     const FeBody& p = model.bodies[particle_];
@@ -90,9 +94,9 @@ ImpactSample ImpactRun::sample(double time, const Model& model) const {
   s.kinetic_rel = 0.5 * p.mass * scale * rel.squaredNorm();
   if (contact_ >= 0) {
     const ContactStats& st = model.contacts[contact_].stats();
-    s.links_active = st.links_active;
+    s.links_active = links_hold_ ? st.links_active : 0;
     s.pairs_in_contact = st.in_contact;
-    s.bonded_area = st.bonded_area;
+    s.bonded_area = links_hold_ ? st.bonded_area : 0.0;
   } else if (particle_ >= 0) {
     const FeBody& body = model.bodies[particle_];
     for (std::size_t i = body.node_begin; i < body.node_end; ++i) {

@@ -10,7 +10,11 @@
 //   K_rel      1/2 M_p |v_p - v_s|^2, J
 //   links      active links, pairs carrying a compressive force and bonded
 //              area of the particle-substrate contact (rigid wall: particle
-//              nodes on the wall)
+//              nodes on the wall). Links of an interface with G_c = 0 cannot
+//              hold anything (their budget is empty): the monitor sees none,
+//              so a particle resting in its crater without adhesion energy
+//              is not called stuck (the thesis's criteria, which count them,
+//              may still say stick).
 // Hold time of a verdict: k_hold_transits particle transits R / c_p (c_p the
 // particle's P-wave speed), long enough for the elastic ringing of the
 // particle after the impact to pass through one period of its lowest modes.
@@ -68,6 +72,7 @@ class ImpactRun {
   int particle_ = -1;   // body index
   int substrate_ = -1;  // body index, -1: rigid wall
   int contact_ = -1;    // contact interface index, -1: rigid wall
+  bool links_hold_ = false;  // the interface has adhesion with G_c > 0
   double radius_ = 0.0;
   double initial_kinetic_ = -1.0;  // J, of the particle at the first sample
   ImpactSample last_;

@@ -781,6 +781,20 @@ void apply_override(json& doc, const std::string& text) {
   }
 }
 
+// The impact run's view of an expanded particle_impact block (it carries the
+// model the expansion chose under "model").
+ImpactSpec impact_spec(const json& block) {
+  ImpactSpec impact;
+  const json model = block.value("model", json::object());
+  impact.substrate = model.value("rigid_substrate", false) ? "" : "substrate";
+  impact.velocity = block.at("velocity").get<double>();
+  impact.angle = block.value("angle", 0.0);
+  impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
+  impact.model = model.value("name", "");
+  impact.why = model.value("why", "");
+  return impact;
+}
+
 }  // namespace
 
 LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
@@ -789,14 +803,7 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
     const ExpandedImpact expanded = expand_particle_impact(doc);
     LoadedScene loaded = read_scene(expanded.scene, base_dir);
     const json& block = expanded.scene.at("particle_impact");
-    ImpactSpec impact;
-    impact.substrate = expanded.choice.rigid_substrate ? "" : "substrate";
-    impact.velocity = block.at("velocity").get<double>();
-    impact.angle = block.value("angle", 0.0);
-    impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
-    impact.model = expanded.choice.model;
-    impact.why = expanded.choice.why;
-    loaded.scene.impact = impact;
+    loaded.scene.impact = impact_spec(block);
     loaded.resolved["particle_impact"] = block;
     return loaded;
   }
@@ -868,6 +875,12 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
 
   if (!problems.list.empty()) throw InputError(std::move(problems.list));
   loaded.resolved = scene_to_resolved_json(scene);
+  // An already expanded impact scene (a campaign job, a resolved scene run
+  // again): bodies plus the block with the model the expansion chose.
+  if (const auto pi = doc.find("particle_impact"); pi != doc.end() && pi->contains("model")) {
+    scene.impact = impact_spec(*pi);
+    loaded.resolved["particle_impact"] = *pi;
+  }
   return loaded;
 }
 
