@@ -266,11 +266,13 @@ RunSummary Simulation::run() {
     // Initial state: forces of the initial velocities on absorbing faces.
     NodeSet& n = s.model.nodes;
     std::fill(n.f.begin(), n.f.end(), Vec3::Zero());
+    // The first step is capped by the closing speed too; the time-step floor
+    // stays relative to the elastic bound.
     s.closing_speed = initial_closing_speed(s.model);
-    s.dt_stable = std::min(initial_time_step_bound(s.model),
-                           closing_speed_time_step_bound(s.model, s.closing_speed));
+    s.dt_stable = initial_time_step_bound(s.model);
+    s.dt_first = s.scene.time.stability_coefficient * s.dt_stable;
+    s.dt_stable = std::min(s.dt_stable, closing_speed_time_step_bound(s.model, s.closing_speed));
     s.dt_half = s.scene.time.stability_coefficient * s.dt_stable;
-    s.dt_first = s.dt_half;
     s.compute_energies();
     s.energy.initial_total = s.energy.kinetic + s.energy.internal;
     s.energy.balance_error = 0.0;

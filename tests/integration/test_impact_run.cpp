@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include <unistd.h>
+
 #include "solver/input/schema.hpp"
 #include "solver/io/result_file.hpp"
 
@@ -41,7 +43,8 @@ Output run(const std::string& args) {
 const std::string scene = std::string(SPLAT_SOURCE_DIR) + "/scenes/impact_al_al.json";
 
 json run_impact(const std::string& name, const std::string& sets, int expected_code) {
-  const auto dir = std::filesystem::temp_directory_path() / ("splat_impact_" + name);
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("splat_impact_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   const Output o = run("run " + scene + " --json --threads 1 --out " + dir.string() + " " + sets);
   EXPECT_EQ(o.code, expected_code) << o.stdout_text;
