@@ -78,12 +78,24 @@ void ContactInterface::release_local_nodes() {
   local_nodes_.clear();
 }
 
-std::vector<DetectedPair> ContactInterface::detect(const std::vector<Vec3>& x) {
-  std::vector<DetectedPair> pairs = find_pairs_buckets(master_, slave_, x, settings_.search);
+std::vector<DetectedPair> ContactInterface::detect(const NodeSet& nodes) {
+  const std::vector<Vec3>& x = nodes.x;
+  auto live = [&](const ContactSurface& sl, const ContactSurface& ma, const DetectedPair& p) {
+    if (!(nodes.mass[sl.nodes[p.slave]] > 0.0)) return false;
+    for (int k = 0; k < ma.nodes_per_face(); ++k) {
+      if (!(nodes.mass[ma.faces[p.face][k]] > 0.0)) return false;
+    }
+    return true;
+  };
+  std::vector<DetectedPair> pairs;
+  for (const DetectedPair& p : find_pairs_buckets(master_, slave_, x, settings_.search)) {
+    if (live(slave_, master_, p)) pairs.push_back(p);
+  }
   first_pass_pairs_ = pairs.size();
   if (settings_.two_pass) {
-    const std::vector<DetectedPair> back = find_pairs_buckets(slave_, master_, x, settings_.search);
-    pairs.insert(pairs.end(), back.begin(), back.end());
+    for (const DetectedPair& p : find_pairs_buckets(slave_, master_, x, settings_.search)) {
+      if (live(master_, slave_, p)) pairs.push_back(p);
+    }
   }
   return pairs;
 }
@@ -206,7 +218,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
                                      double dt, const std::vector<FeBody>& bodies) {
   if (!(dt > 0.0)) return;
   const bool adhesive = settings_.adhesion.has_value();
-  const std::vector<DetectedPair> pairs = detect(nodes.x);
+  const std::vector<DetectedPair> pairs = detect(nodes);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;
   stats_.links_in_tension = 0;
@@ -359,7 +371,7 @@ void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uin
   penalty_nodes_.clear();
   penalty_force_.clear();
   penalty_v_old_.clear();
-  const std::vector<DetectedPair> pairs = detect(nodes.x);
+  const std::vector<DetectedPair> pairs = detect(nodes);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;
   stats_.stored = 0.0;

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
+#include <string>
 
 namespace splat {
 namespace {
@@ -11,6 +13,18 @@ namespace {
 constexpr double k_hold_transits = 8.0;     // hold time in particle transits R / c_p, -
 constexpr double k_wall_touch = 1e-9;       // gap / R below which a node touches a rigid wall, -
 constexpr double k_thesis_fraction = 0.01;  // thesis: > 1 % of the most links ever active
+// Particle mass eroded above which the model no longer represents the
+// particle: the verdict is withheld (outcome unstable), -.
+constexpr double k_max_eroded_mass = 0.05;
+// |v_n| / v_impact above which a particle still moving into the substrate at
+// the maximum time has no verdict, -.
+constexpr double k_undecided_speed = 0.05;
+
+std::string format_reason(const char* fmt, double a, double b) {
+  char buf[240];
+  std::snprintf(buf, sizeof buf, fmt, a, b);
+  return buf;
+}
 
 int body_index(const Model& model, const std::string& name) {
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -189,7 +203,44 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
       r.max_links_active > 0 && static_cast<double>(r.links_active) >
                                     k_thesis_fraction * static_cast<double>(r.max_links_active);
 
-  const bool own_end = settled.has_value() || s.stop_reason == "end-time";
+  // Share of the particle's mass eroded.
+  double eroded_fraction = 0.0;
+  if (particle_ >= 0) {
+    const FeBody& body = model.bodies[particle_];
+    double total = 0.0, gone = 0.0;
+    for (std::size_t e = 0; e < body.num_elements(); ++e) {
+      total += body.element_mass[e];
+      if (!body.active[e]) gone += body.element_mass[e];
+    }
+    eroded_fraction = total > 0.0 ? gone / total : 0.0;
+  }
+
+  bool own_end = settled.has_value() || s.stop_reason == "end-time";
+  if (own_end && eroded_fraction > k_max_eroded_mass) {
+    own_end = false;
+    s.outcome = RunOutcome::unstable;
+    s.stop_reason = "erosion-limit";
+    s.reason = format_reason(
+        "no verdict: %.1f %% of the particle's mass was eroded (limit %.0f %%); the mesh cannot "
+        "follow this deformation at this resolution",
+        100.0 * eroded_fraction, 100.0 * k_max_eroded_mass);
+  } else if (own_end && !settled && now.v_normal < -k_undecided_speed * spec_.velocity) {
+    own_end = false;
+    s.outcome = RunOutcome::unstable;
+    s.stop_reason = "undecided";
+    s.reason = format_reason(
+        "no verdict at the end time %.4g s: the particle still moves into the substrate at "
+        "%.4g m/s",
+        s.end_time, -now.v_normal);
+  } else if (!own_end && s.stop_reason == "energy-balance") {
+    // Say which term broke the balance (all as fractions of the initial energy).
+    const EnergyBudget& e = s.energy;
+    const double E0 = std::max(e.initial_total, 1e-300);
+    s.reason += format_reason(" (contact work %+.3g, eroded %.3g of the initial energy",
+                              e.contact_work / E0, e.eroded / E0);
+    s.reason +=
+        format_reason("; hourglass %.3g, kinetic now %.3g)", e.hourglass / E0, e.kinetic / E0);
+  }
   if (own_end) {
     const VerdictDecision d = settled ? *settled : monitor_.at_end(now);
     r.verdict = d.verdict == ImpactVerdict::stick ? "stick" : "rebound";

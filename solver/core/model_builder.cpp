@@ -81,6 +81,7 @@ FeSettings settings_of(const BodySpec& b) {
   s.q_quadratic = b.q_quadratic;
   s.erosion = b.erosion;
   s.erosion_min_time_step = b.erosion_min_time_step;
+  s.erosion_on_damage = b.erosion_on_damage;
   return s;
 }
 

@@ -409,6 +409,7 @@ BodySpec parse_body(const json& j, const std::string& p, const std::filesystem::
   const json& er = member_or_empty(j, "erosion");
   b.erosion = value_or(er, "enabled", false);
   b.erosion_min_time_step = value_or(er, "min_time_step", 0.0);
+  b.erosion_on_damage = value_or(er, "damage", true);
   return b;
 }
 
@@ -441,7 +442,10 @@ json body_to_json(const BodySpec& b) {
       {"hourglass",
        {{"type", name_of(hourglass_names, b.hourglass)}, {"coefficient", b.hourglass_coefficient}}},
       {"artificial_viscosity", {{"linear", b.q_linear}, {"quadratic", b.q_quadratic}}},
-      {"erosion", {{"enabled", b.erosion}, {"min_time_step", b.erosion_min_time_step}}},
+      {"erosion",
+       {{"enabled", b.erosion},
+        {"min_time_step", b.erosion_min_time_step},
+        {"damage", b.erosion_on_damage}}},
   };
 }
 
