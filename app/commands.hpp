@@ -18,6 +18,7 @@ void register_run(CLI::App& app, CommandTable& commands);
 void register_sweep(CLI::App& app, CommandTable& commands);
 void register_windows(CLI::App& app, CommandTable& commands);
 void register_regress(CLI::App& app, CommandTable& commands);
+void register_converge(CLI::App& app, CommandTable& commands);
 
 inline void register_all(CLI::App& app, CommandTable& commands) {
   register_materials(app, commands);
@@ -26,6 +27,7 @@ inline void register_all(CLI::App& app, CommandTable& commands) {
   register_sweep(app, commands);
   register_windows(app, commands);
   register_regress(app, commands);
+  register_converge(app, commands);
 }
 
 }  // namespace splat::app
