@@ -27,6 +27,9 @@ ContactInterface::ContactInterface(std::string master_body, std::string slave_bo
 
 namespace {
 
+// Existing penetration pushed out per step, fraction of the face size, -.
+constexpr double k_pushout_fraction = 0.02;
+
 // Elements of `body` that contain global node g (ascending).
 std::vector<int> elements_of_node(const FeBody& body, int g) {
   std::vector<int> out;
@@ -142,7 +145,22 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
     problem_.normal.push_back(dp.geometry.normal);
     problem_.tangent1.push_back(dp.geometry.tangent1);
     problem_.tangent2.push_back(dp.geometry.tangent2);
-    problem_.b.push_back(-dp.geometry.gap / dt);
+    // Penetration already present at x_n (a fold or a pair first found behind
+    // its face) is pushed out at most k_pushout_fraction of the face size per
+    // step: a full push-out g_n / dt in one step gives the node a speed of
+    // the order of the wave speed and injects energy (fast impacts).
+    double b = -dp.geometry.gap / dt;
+    {
+      double vn = 0.0;  // C v, normal rate of the pair (positive opening)
+      for (int k = 0; k < npf + 1; ++k) {
+        const int g = k == 0 ? sl.nodes[dp.slave] : ma.faces[dp.face][k - 1];
+        vn += coef[k] * nodes.v[g].dot(dp.geometry.normal);
+      }
+      const double g_n = dp.geometry.gap - dt * vn;
+      const double allowed = k_pushout_fraction * face_size(ma, dp.face, nodes.x);
+      if (g_n < -allowed) b = -vn + allowed / dt;
+    }
+    problem_.b.push_back(b);
     problem_.lo.push_back(0.0);
     problem_.b_hold.push_back(problem_.b.back());
     problem_.mu.push_back(settings_.friction);
