@@ -185,5 +185,35 @@ TEST(impact_run, schema_requires_the_impact_keys_once_a_verdict_is_reported) {
   EXPECT_FALSE(validate("result", broken).empty());
 }
 
+TEST(impact_run, converge_prints_one_row_per_level_and_errors_against_the_finest) {
+  const Output o = run("converge " + scene +
+                       " --json --set-levels /particle_impact/particle/elements_across=2,4,8");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const json doc = json::parse(o.stdout_text, nullptr, false);
+  ASSERT_FALSE(doc.is_discarded()) << o.stdout_text;
+  ASSERT_EQ(doc["levels"].size(), 3u);
+  long long previous = 0;
+  for (const json& l : doc["levels"]) {
+    EXPECT_GT(l["elements"].get<long long>(), previous);  // finer levels, more elements
+    previous = l["elements"].get<long long>();
+    EXPECT_TRUE(l["rebound_velocity"].is_number());
+    EXPECT_FALSE(l["outcome"].get<std::string>().empty());
+  }
+  const json& finest = doc["levels"][2];
+  EXPECT_EQ(finest["rebound_velocity_error"].get<double>(), 0.0);
+  EXPECT_NEAR(
+      doc["levels"][0]["rebound_velocity_error"].get<double>(),
+      doc["levels"][0]["rebound_velocity"].get<double>() - finest["rebound_velocity"].get<double>(),
+      1e-9);
+  EXPECT_TRUE(doc["richardson"].contains("rebound_velocity"));
+
+  const Output bad = run("converge " + scene + " --set-levels elements_across=2,4");
+  EXPECT_EQ(bad.code, 2);
+  const Output table =
+      run("converge " + scene + " --set-levels /particle_impact/particle/elements_across=2,4");
+  EXPECT_EQ(table.code, 0);
+  EXPECT_NE(table.stdout_text.find("bond error"), std::string::npos) << table.stdout_text;
+}
+
 }  // namespace
 }  // namespace splat
