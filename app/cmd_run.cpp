@@ -1,8 +1,8 @@
 // splat run SCENE.json [--set /json/pointer=VALUE ...] [--out DIR] [--json]
 // Runs one scene. Writes DIR/<scene>.h5 (+ .xmf) and DIR/<scene>.summary.json
 // and prints the summary (schemas/result.schema.json with --json).
-// Exit code: 0 finished (two-mass scenes: stick or rebound), 3 ended otherwise (unstable,
-// timed-out, error; the summary says why), 2 bad input.
+// Exit code: 0 finished (two-mass and particle_impact scenes: stick or rebound), 3 ended otherwise
+// (unstable, timed-out, error; the summary says why), 2 bad input.
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -65,6 +65,20 @@ void print_human(const RunSummary& s) {
     std::printf("    extent (%.4e, %.4e, %.4e) .. (%.4e, %.4e, %.4e) m\n", b.extent_min.x(),
                 b.extent_min.y(), b.extent_min.z(), b.extent_max.x(), b.extent_max.y(),
                 b.extent_max.z());
+  }
+  if (s.impact) {
+    const ImpactSummary& r = *s.impact;
+    std::printf("  impact %s: verdict %s (%s), stop %s\n", r.model.c_str(), r.verdict.c_str(),
+                r.settled ? "settled" : "not settled", s.stop_reason.c_str());
+    std::printf(
+        "    rebound velocity %.4g m/s (COR %.3f), bonded area %.4e m^2 (%.1f %% of %.4e)\n",
+        r.rebound_velocity, r.coefficient_of_restitution, r.bonded_area, 100.0 * r.bonded_fraction,
+        r.contact_area);
+    std::printf("    links: contact %lld activated %lld exhausted %lld eroded %lld active %lld\n",
+                r.links_contact, r.links_activated, r.links_exhausted, r.links_eroded,
+                r.links_active);
+    std::printf("    flattening %.3f, penetration %.4e m, max eps_p %.3f, max T %.1f K\n",
+                r.flattening_ratio, r.penetration_depth, r.max_plastic_strain, r.max_temperature);
   }
   if (!s.hdf5_path.empty())
     std::printf("  result %s (ParaView: %s)\n", s.hdf5_path.c_str(), s.xdmf_path.c_str());

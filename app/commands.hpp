@@ -19,6 +19,7 @@ void register_sweep(CLI::App& app, CommandTable& commands);
 void register_windows(CLI::App& app, CommandTable& commands);
 void register_regress(CLI::App& app, CommandTable& commands);
 void register_serve(CLI::App& app, CommandTable& commands);
+void register_converge(CLI::App& app, CommandTable& commands);
 
 inline void register_all(CLI::App& app, CommandTable& commands) {
   register_materials(app, commands);
@@ -28,6 +29,7 @@ inline void register_all(CLI::App& app, CommandTable& commands) {
   register_windows(app, commands);
   register_regress(app, commands);
   register_serve(app, commands);
+  register_converge(app, commands);
 }
 
 }  // namespace splat::app

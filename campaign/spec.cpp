@@ -17,15 +17,17 @@ namespace {
 struct NamedAxis {
   const char* key;
   const char* two_mass_pointer;  // default when the base scene is a two-mass scene
+  const char* impact_pointer;    // default when the base scene is a particle_impact scene
   const char* unit;
 };
 
 // The parameter axes the spec names, in expansion order.
 constexpr NamedAxis k_named_axes[] = {
-    {"G_c", "/two_mass/adhesion/G_c", "J/m^2"},
-    {"sigma_c", "/two_mass/adhesion/sigma_c", "Pa"},
-    {"yield_drop_percent", "/two_mass/adhesion/activation/drop_percent", "%"},
-    {"D_adh_max", "/two_mass/adhesion/D_adh_max", "-"},
+    {"G_c", "/two_mass/adhesion/G_c", "/particle_impact/adhesion/G_c", "J/m^2"},
+    {"sigma_c", "/two_mass/adhesion/sigma_c", "/particle_impact/adhesion/sigma_c", "Pa"},
+    {"yield_drop_percent", "/two_mass/adhesion/activation/drop_percent",
+     "/particle_impact/adhesion/activation/drop_percent", "%"},
+    {"D_adh_max", "/two_mass/adhesion/D_adh_max", "/particle_impact/adhesion/D_adh_max", "-"},
 };
 
 std::vector<double> velocity_values(const json& v) {
@@ -89,17 +91,23 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
     s.base_scene = base;
   }
   const bool two_mass = s.base_scene.is_object() && s.base_scene.contains("two_mass");
+  // A particle_impact scene (not yet expanded: no bodies) ends stick or
+  // rebound like a two-mass one, so the windows classify it the same way.
+  const bool impact = s.base_scene.is_object() && s.base_scene.contains("particle_impact") &&
+                      !s.base_scene.contains("bodies");
 
-  auto pointer_of = [&](const json& axis, const std::string& where,
-                        const char* two_mass_default) -> std::string {
+  auto pointer_of = [&](const json& axis, const std::string& where, const char* two_mass_default,
+                        const char* impact_default) -> std::string {
     if (axis.contains("pointer")) return axis.at("pointer").get<std::string>();
     if (two_mass && two_mass_default) return two_mass_default;
-    problems.push_back({where + "/pointer", "required unless the base scene has a two_mass block"});
+    if (impact && impact_default) return impact_default;
+    problems.push_back({where + "/pointer",
+                        "required unless the base scene has a two_mass or particle_impact block"});
     return {};
   };
 
   const json& v = doc.at("velocity");
-  s.velocity_pointer = pointer_of(v, "/velocity", "/two_mass/V0");
+  s.velocity_pointer = pointer_of(v, "/velocity", "/two_mass/V0", "/particle_impact/velocity");
   s.velocities = velocity_values(v);
   s.velocity_scale = v.value("scale", 1.0);
   if (s.velocities.empty()) {
@@ -116,7 +124,7 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
     if (!doc.contains(n.key)) continue;
     const json& a = doc.at(n.key);
     const std::string where = std::string("/") + n.key;
-    ParameterAxis axis{n.key, pointer_of(a, where, n.two_mass_pointer), n.unit,
+    ParameterAxis axis{n.key, pointer_of(a, where, n.two_mass_pointer, n.impact_pointer), n.unit,
                        a.at("values").get<std::vector<json>>(), false};
     check_unique(axis.pointer, where);
     s.axes.push_back(std::move(axis));

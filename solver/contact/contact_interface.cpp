@@ -27,6 +27,9 @@ ContactInterface::ContactInterface(std::string master_body, std::string slave_bo
 
 namespace {
 
+// Existing penetration pushed out per step, fraction of the face size, -.
+constexpr double k_pushout_fraction = 0.02;
+
 // Elements of `body` that contain global node g (ascending).
 std::vector<int> elements_of_node(const FeBody& body, int g) {
   std::vector<int> out;
@@ -78,12 +81,24 @@ void ContactInterface::release_local_nodes() {
   local_nodes_.clear();
 }
 
-std::vector<DetectedPair> ContactInterface::detect(const std::vector<Vec3>& x) {
-  std::vector<DetectedPair> pairs = find_pairs_buckets(master_, slave_, x, settings_.search);
+std::vector<DetectedPair> ContactInterface::detect(const NodeSet& nodes) {
+  const std::vector<Vec3>& x = nodes.x;
+  auto live = [&](const ContactSurface& sl, const ContactSurface& ma, const DetectedPair& p) {
+    if (!(nodes.mass[sl.nodes[p.slave]] > 0.0)) return false;
+    for (int k = 0; k < ma.nodes_per_face(); ++k) {
+      if (!(nodes.mass[ma.faces[p.face][k]] > 0.0)) return false;
+    }
+    return true;
+  };
+  std::vector<DetectedPair> pairs;
+  for (const DetectedPair& p : find_pairs_buckets(master_, slave_, x, settings_.search)) {
+    if (live(slave_, master_, p)) pairs.push_back(p);
+  }
   first_pass_pairs_ = pairs.size();
   if (settings_.two_pass) {
-    const std::vector<DetectedPair> back = find_pairs_buckets(slave_, master_, x, settings_.search);
-    pairs.insert(pairs.end(), back.begin(), back.end());
+    for (const DetectedPair& p : find_pairs_buckets(slave_, master_, x, settings_.search)) {
+      if (live(master_, slave_, p)) pairs.push_back(p);
+    }
   }
   return pairs;
 }
@@ -130,7 +145,22 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
     problem_.normal.push_back(dp.geometry.normal);
     problem_.tangent1.push_back(dp.geometry.tangent1);
     problem_.tangent2.push_back(dp.geometry.tangent2);
-    problem_.b.push_back(-dp.geometry.gap / dt);
+    // Penetration already present at x_n (a fold or a pair first found behind
+    // its face) is pushed out at most k_pushout_fraction of the face size per
+    // step: a full push-out g_n / dt in one step gives the node a speed of
+    // the order of the wave speed and injects energy (fast impacts).
+    double b = -dp.geometry.gap / dt;
+    {
+      double vn = 0.0;  // C v, normal rate of the pair (positive opening)
+      for (int k = 0; k < npf + 1; ++k) {
+        const int g = k == 0 ? sl.nodes[dp.slave] : ma.faces[dp.face][k - 1];
+        vn += coef[k] * nodes.v[g].dot(dp.geometry.normal);
+      }
+      const double g_n = dp.geometry.gap - dt * vn;
+      const double allowed = k_pushout_fraction * face_size(ma, dp.face, nodes.x);
+      if (g_n < -allowed) b = -vn + allowed / dt;
+    }
+    problem_.b.push_back(b);
     problem_.lo.push_back(0.0);
     problem_.b_hold.push_back(problem_.b.back());
     problem_.mu.push_back(settings_.friction);
@@ -206,7 +236,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
                                      double dt, const std::vector<FeBody>& bodies) {
   if (!(dt > 0.0)) return;
   const bool adhesive = settings_.adhesion.has_value();
-  const std::vector<DetectedPair> pairs = detect(nodes.x);
+  const std::vector<DetectedPair> pairs = detect(nodes);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;
   stats_.links_in_tension = 0;
@@ -359,7 +389,7 @@ void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uin
   penalty_nodes_.clear();
   penalty_force_.clear();
   penalty_v_old_.clear();
-  const std::vector<DetectedPair> pairs = detect(nodes.x);
+  const std::vector<DetectedPair> pairs = detect(nodes);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;
   stats_.stored = 0.0;

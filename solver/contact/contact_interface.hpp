@@ -119,8 +119,11 @@ class ContactInterface {
 
  private:
   // Pairs of both passes: slave nodes on master faces first
-  // (first_pass_pairs_ of them), then master nodes on slave faces.
-  std::vector<DetectedPair> detect(const std::vector<Vec3>& x);
+  // (first_pass_pairs_ of them), then master nodes on slave faces. Pairs
+  // with a node of eroded elements only (mass 0) are dropped: such a node
+  // is no longer integrated (it keeps its last velocity), and as a face node
+  // it would act as an infinitely heavy obstacle moving through the bodies.
+  std::vector<DetectedPair> detect(const NodeSet& nodes);
   // Gathers the detected pairs into problem_ (local nodes, inverse masses).
   void build_problem(const NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask,
                      const std::vector<DetectedPair>& pairs, double dt);

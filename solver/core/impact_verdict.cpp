@@ -7,7 +7,10 @@ namespace splat {
 namespace {
 
 constexpr double k_area_steadiness = 0.01;  // relative bonded-area change allowed, -
-constexpr double k_held_speed = 0.05;       // v_n / v_impact below which a particle is held, -
+// v_n / v_impact above which a particle counts as leaving even with links
+// active (a link with a tiny sigma_c stays active over an opening of
+// G_c / sigma_c while the particle flies off), -
+constexpr double k_held_speed = 0.02;
 
 std::string format(const char* fmt, double a, double b) {
   char buf[200];
@@ -34,7 +37,7 @@ std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
                rebound_since_, s.v_normal)};
   }
 
-  const bool holding = s.links_active > 0;
+  const bool holding = s.links_active > 0 && s.v_normal <= k_held_speed * settings_.impact_speed;
   const bool steady = holding && s.links_active >= stick_links_ &&
                       std::abs(s.bonded_area - stick_area_) <= k_area_steadiness * stick_area_;
   if (!holding || !steady || stick_since_ < 0.0) {

@@ -10,11 +10,12 @@
 // Decided and settled (checked at every history row):
 //   rebound  no active link, no pair carrying a force, and v_n > 0, all held
 //            for `hold_time`: nothing can pull the particle back;
-//   stick    at least one active link, no link lost, bonded area steady
-//            (within 1 %) for `hold_time`, and K_rel <= settle_fraction K_0:
-//            the particle is held and its motion has died down.
+//   stick    at least one active link and v_n <= 0.02 |v_impact| (not
+//            leaving), no link lost, bonded area steady (within 1 %) for
+//            `hold_time`, and K_rel <= settle_fraction K_0: the particle is
+//            held and its motion has died down.
 // At the maximum time without a settled verdict: stick if links are active
-// and v_n <= 0.05 |v_impact| (still held, not flying off), otherwise rebound;
+// and v_n <= 0.02 |v_impact| (still held, not flying off), otherwise rebound;
 // the reason then says the state was not settled.
 #pragma once
 

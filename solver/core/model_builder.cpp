@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "solver/fe/bulk_viscosity.hpp"
 #include "solver/input/schema.hpp"
 #include "solver/mesh/generators.hpp"
 #include "solver/mesh/mesh.hpp"
@@ -80,6 +81,7 @@ FeSettings settings_of(const BodySpec& b) {
   s.q_quadratic = b.q_quadratic;
   s.erosion = b.erosion;
   s.erosion_min_time_step = b.erosion_min_time_step;
+  s.erosion_on_damage = b.erosion_on_damage;
   return s;
 }
 
@@ -381,25 +383,68 @@ Model build_model(const Scene& scene) {
   return model;
 }
 
-double initial_time_step_bound(const Model& model) {
-  double dt = std::numeric_limits<double>::infinity();
-  const NodeSet& n = model.nodes;
+namespace {
+
+// Shortest element edge of body b on the current positions, m.
+double shortest_edge(const FeBody& b, const NodeSet& n) {
   static constexpr int hex_edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
                                            {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
   static constexpr int quad_edges[4][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
-  for (const FeBody& b : model.bodies) {
-    const double c = b.constants.wave_speed;
-    const bool hex = b.kind == ElementKind::hex8;
-    for (const auto& conn : b.conn) {
-      double h = std::numeric_limits<double>::infinity();
-      const int edges = hex ? 12 : 4;
-      for (int k = 0; k < edges; ++k) {
-        const int a = hex ? hex_edges[k][0] : quad_edges[k][0];
-        const int bb = hex ? hex_edges[k][1] : quad_edges[k][1];
-        h = std::min(h, (n.x[conn[a]] - n.x[conn[bb]]).norm());
-      }
-      dt = std::min(dt, h / c);
+  const bool hex = b.kind == ElementKind::hex8;
+  double h = std::numeric_limits<double>::infinity();
+  for (const auto& conn : b.conn) {
+    const int edges = hex ? 12 : 4;
+    for (int k = 0; k < edges; ++k) {
+      const int a = hex ? hex_edges[k][0] : quad_edges[k][0];
+      const int bb = hex ? hex_edges[k][1] : quad_edges[k][1];
+      h = std::min(h, (n.x[conn[a]] - n.x[conn[bb]]).norm());
     }
+  }
+  return h;
+}
+
+}  // namespace
+
+double initial_time_step_bound(const Model& model) {
+  double dt = std::numeric_limits<double>::infinity();
+  for (const FeBody& b : model.bodies) {
+    dt = std::min(dt, shortest_edge(b, model.nodes) / b.constants.wave_speed);
+  }
+  return dt;
+}
+
+double initial_closing_speed(const Model& model) {
+  const NodeSet& n = model.nodes;
+  std::vector<Vec3> mean;
+  for (const FeBody& b : model.bodies) {
+    Vec3 p = Vec3::Zero();
+    double m = 0.0;
+    for (std::size_t i = b.node_begin; i < b.node_end; ++i) {
+      p += n.mass[i] * n.v[i];
+      m += n.mass[i];
+    }
+    mean.push_back(m > 0.0 ? Vec3(p / m) : Vec3(Vec3::Zero()));
+  }
+  double dv = 0.0;
+  for (std::size_t a = 0; a < mean.size(); ++a) {
+    if (!model.walls.empty()) dv = std::max(dv, mean[a].norm());
+    for (std::size_t b = a + 1; b < mean.size(); ++b) dv = std::max(dv, (mean[a] - mean[b]).norm());
+  }
+  return dv;
+}
+
+double closing_speed_time_step_bound(const Model& model, double dv) {
+  if (!(dv > 0.0)) return std::numeric_limits<double>::infinity();
+  double dt = std::numeric_limits<double>::infinity();
+  for (const FeBody& b : model.bodies) {
+    double L = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 0; e < b.num_elements(); ++e) {
+      if (b.active[e] && b.char_length[e] > 0.0) L = std::min(L, b.char_length[e]);
+    }
+    if (!std::isfinite(L)) L = shortest_edge(b, model.nodes);  // before the first evaluation
+    const double c = b.constants.wave_speed;
+    dt =
+        std::min(dt, stable_time_step(L, c, b.settings.q_linear * c + b.settings.q_quadratic * dv));
   }
   return dt;
 }

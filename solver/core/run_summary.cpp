@@ -118,6 +118,33 @@ nlohmann::json to_json(const RunSummary& s) {
                      {"max_link_force", t.max_link_force},
                      {"dt", t.dt}};
   }
+  if (s.impact) {
+    const ImpactSummary& r = *s.impact;
+    j["verdict"] = r.verdict;
+    j["verdict_settled"] = r.settled;
+    j["impact_velocity"] = r.impact_velocity;
+    j["rebound_velocity"] = r.rebound_velocity;
+    j["coefficient_of_restitution"] = r.coefficient_of_restitution;
+    j["bonded_area"] = r.bonded_area;
+    j["contact_area"] = r.contact_area;
+    j["bonded_fraction"] = r.bonded_fraction;
+    j["links"] = {{"contact", r.links_contact},     {"activated", r.links_activated},
+                  {"exhausted", r.links_exhausted}, {"eroded", r.links_eroded},
+                  {"active", r.links_active},       {"max_active", r.max_links_active}};
+    j["thesis_criteria"] = {{"active_link", r.thesis_active_link},
+                            {"one_percent_stuck", r.thesis_one_percent}};
+    j["energy"]["initial_kinetic"] = r.initial_kinetic;
+    j["energy"]["final_particle_kinetic"] = r.final_particle_kinetic;
+    j["energy"]["adhesion_dissipated"] = r.adhesion_dissipated;
+    j["max_temperature"] = r.max_temperature;
+    j["max_plastic_strain"] = r.max_plastic_strain;
+    j["flattening_ratio"] = r.flattening_ratio;
+    j["penetration_depth"] = r.penetration_depth;
+    j["hold_time"] = r.hold_time;
+    j["max_time"] = r.max_time;
+    j["end_time_rule"] = r.adaptive ? "adaptive" : "fixed";
+    j["model"] = {{"name", r.model}, {"why", r.why}};
+  }
   j["output"] = {{"hdf5", path_or_null(s.hdf5_path)}, {"xdmf", path_or_null(s.xdmf_path)}};
   return j;
 }

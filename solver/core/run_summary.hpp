@@ -17,8 +17,8 @@ enum class RunOutcome {
   timed_out,  // wall-clock or step limit
   cancelled,  // stopped from outside
   error,      // could not run or write its output (see reason)
-  stick,      // two-mass scene: the link held (settled, or still active at the end time)
-  rebound,    // two-mass scene: the link let go (exhausted)
+  stick,      // two-mass or impact scene: the particle is held (impact_verdict.hpp)
+  rebound,    // two-mass or impact scene: the link let go / the particle left
 };
 
 const char* to_string(RunOutcome outcome);
@@ -100,6 +100,38 @@ struct TwoMassSummary {
   double dt = 0.0;                     // s, time step used
 };
 
+// Figures of a particle_impact run (solver/core/impact_run.hpp says how each
+// is measured). Velocities along the substrate normal +z, positive away from
+// the substrate. Areas of the full body of revolution in axisymmetric runs.
+struct ImpactSummary {
+  std::string verdict;                    // stick | rebound | none (the run ended before a verdict)
+  bool settled = false;                   // the verdict held for the hold time before the end
+  double impact_velocity = 0.0;           // m/s
+  double rebound_velocity = 0.0;          // m/s, particle relative to substrate, at the end
+  double coefficient_of_restitution = 0;  // max(rebound_velocity, 0) / impact_velocity, -
+  double bonded_area = 0.0;               // m^2, active links at the end
+  double contact_area = 0.0;              // m^2, particle surface that ever touched
+  double bonded_fraction = 0.0;           // bonded_area / contact_area, -
+  long long links_contact = 0;            // particle surface nodes that ever touched
+  long long links_activated = 0, links_exhausted = 0, links_eroded = 0, links_active = 0;
+  long long max_links_active = 0;
+  // Thesis 3.5.3 stick criteria, reported for comparison.
+  bool thesis_active_link = false;      // at least one active link at the end
+  bool thesis_one_percent = false;      // active links > 1 % of the most ever active
+  double initial_kinetic = 0.0;         // J, particle at impact
+  double final_particle_kinetic = 0.0;  // J, particle (all its motion) at the end
+  double adhesion_dissipated = 0.0;     // J, charged to the links' budgets
+  double max_temperature = 0.0;         // K, both bodies
+  double max_plastic_strain = 0.0;      // -, both bodies
+  double flattening_ratio = 0.0;        // final particle diameter / 2R, -
+  double penetration_depth = 0.0;       // m, lowest particle point below z = 0
+  double hold_time = 0.0;               // s
+  double max_time = 0.0;                // s
+  bool adaptive = true;
+  std::string model;  // fe-axisym, fe-3d-quarter, fe-3d-full
+  std::string why;
+};
+
 struct RunSummary {
   std::string scene;
   RunOutcome outcome = RunOutcome::finished;
@@ -113,6 +145,7 @@ struct RunSummary {
   std::vector<BodySummary> bodies;
   std::vector<InterfaceSummary> interfaces;
   std::optional<TwoMassSummary> two_mass;  // two-mass scenes only
+  std::optional<ImpactSummary> impact;     // particle_impact scenes (FE) only
   std::string hdf5_path;                   // empty when no file was written
   std::string xdmf_path;
 };

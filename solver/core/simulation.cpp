@@ -25,6 +25,7 @@ Simulation::Simulation(const Scene& scene, nlohmann::json resolved_scene, Simula
   impl_->resolved = std::move(resolved_scene);
   impl_->options = std::move(options);
   impl_->model = build_model(scene);
+  if (scene.impact) impl_->impact.emplace(*scene.impact, impl_->model, scene.time.end_time);
 }
 
 Simulation::~Simulation() = default;
@@ -265,9 +266,13 @@ RunSummary Simulation::run() {
     // Initial state: forces of the initial velocities on absorbing faces.
     NodeSet& n = s.model.nodes;
     std::fill(n.f.begin(), n.f.end(), Vec3::Zero());
+    // The first step is capped by the closing speed too; the time-step floor
+    // stays relative to the elastic bound.
+    s.closing_speed = initial_closing_speed(s.model);
     s.dt_stable = initial_time_step_bound(s.model);
+    s.dt_first = s.scene.time.stability_coefficient * s.dt_stable;
+    s.dt_stable = std::min(s.dt_stable, closing_speed_time_step_bound(s.model, s.closing_speed));
     s.dt_half = s.scene.time.stability_coefficient * s.dt_stable;
-    s.dt_first = s.dt_half;
     s.compute_energies();
     s.energy.initial_total = s.energy.kinetic + s.energy.internal;
     s.energy.balance_error = 0.0;
@@ -296,6 +301,13 @@ RunSummary Simulation::run() {
           stopped = true;
         }
       }
+      if (!stopped && s.impact) {
+        s.verdict = s.impact->observe(s.time, s.model);
+        if (s.verdict && s.scene.impact->adaptive_end) {
+          summary.stop_reason = "verdict-settled";
+          stopped = true;
+        }
+      }
       const bool at_end = s.time >= end_time * (1.0 - 1e-12);
       if (at_end && !stopped) {
         summary.outcome = RunOutcome::finished;
@@ -308,14 +320,21 @@ RunSummary Simulation::run() {
       // final state in the file.
       s.write_snapshot(stopped);
       s.dt_half_prev = s.dt_half;
-      s.dt_half = s.scene.time.stability_coefficient * s.dt_stable;
+      s.dt_half = s.scene.time.stability_coefficient *
+                  std::min(s.dt_stable, closing_speed_time_step_bound(s.model, s.closing_speed));
       if (!s.options.quiet && s.step % 1000 == 0) {
         std::fprintf(stderr, "step %lld t = %.4e s dt = %.3e s E_err = %.2e\n", s.step, s.time,
                      s.dt_half, s.energy.balance_error);
       }
     }
     s.fill_summary(summary);
+    if (s.impact) s.impact->finish(summary, s.model, s.verdict);
     if (s.file) {
+      if (summary.impact) {
+        summary.wall_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        write_impact_attributes(*s.file, summary);
+      }
       s.file->set_attribute("outcome", to_string(summary.outcome));
       s.file->set_attribute("reason", summary.reason);
       s.file->set_attribute("stop_reason", summary.stop_reason);
@@ -325,6 +344,7 @@ RunSummary Simulation::run() {
     }
   } catch (const std::exception& e) {
     s.fill_summary(summary);
+    if (s.impact) s.impact->finish(summary, s.model, std::nullopt);
     summary.outcome = RunOutcome::error;
     summary.stop_reason = "error";
     summary.reason = e.what();

@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "solver/core/impact_run.hpp"
 #include "solver/core/model_builder.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/io/result_file.hpp"
@@ -25,16 +26,20 @@ struct Simulation::Impl {
   // Running state.
   double time = 0.0;
   long long step = 0;
-  double dt_half = 0.0;       // dt_{n+1/2}, s
-  double dt_half_prev = 0.0;  // dt_{n-1/2}, s
-  double dt_stable = 0.0;     // last CFL bound over all bodies, s
-  double dt_first = 0.0;      // first step, s
+  double dt_half = 0.0;        // dt_{n+1/2}, s
+  double dt_half_prev = 0.0;   // dt_{n-1/2}, s
+  double dt_stable = 0.0;      // last CFL bound over all bodies, s
+  double dt_first = 0.0;       // first step, s
+  double closing_speed = 0.0;  // largest initial closing speed, m/s (model_builder.hpp)
   EnergyBudget energy;
   int max_return_iterations = 0;
   std::size_t next_snapshot = 0;
   double next_history_time = 0.0;
   std::unique_ptr<ResultFile> file;
   std::filesystem::path h5_path;
+  // particle_impact scenes: the verdict monitor and the latest settled verdict.
+  std::optional<ImpactRun> impact;
+  std::optional<VerdictDecision> verdict;
 
   // Energy factor: axisymmetric quantities are per radian.
   double scale() const { return model.axisymmetric ? 2.0 * std::numbers::pi : 1.0; }

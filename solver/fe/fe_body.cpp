@@ -212,7 +212,8 @@ inline MaterialStep material_step(FeBody& body, std::size_t e, const Mat3& L, do
 }
 
 // True if the element meets an erosion criterion (settings.erosion): damage at
-// its cap, non-positive volume, or a CFL bound below erosion_min_time_step.
+// its cap (if erosion_on_damage), non-positive volume, or a CFL bound below
+// erosion_min_time_step.
 // Without erosion a non-positive volume is counted as inverted.
 inline bool to_be_eroded(const FeBody& body, std::size_t e, double V, double dt_e,
                          BlockSums& sums) {
@@ -223,7 +224,7 @@ inline bool to_be_eroded(const FeBody& body, std::size_t e, double V, double dt_
   }
   if (!(V > 0.0)) return true;
   const DamageParams& dm = body.material.damage;
-  if (body.switches.damage && dm.initiation != DamageInitiation::none &&
+  if (s.erosion_on_damage && body.switches.damage && dm.initiation != DamageInitiation::none &&
       body.state[e].D >= dm.D_max - 1e-12) {
     return true;
   }

@@ -43,6 +43,7 @@ struct FeSettings {
   double q_quadratic = 1.5;            // bulk viscosity, quadratic coefficient, -
   bool erosion = false;
   double erosion_min_time_step = 0.0;  // s; 0 = off
+  bool erosion_on_damage = true;       // erosion also at the damage cap (else only geometric)
 };
 
 struct FeBody {

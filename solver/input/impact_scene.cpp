@@ -16,10 +16,12 @@ namespace {
 using nlohmann::json;
 
 constexpr double k_pi = std::numbers::pi;
-constexpr double k_gap = 1e-3;             // initial gap / particle radius, -
-constexpr double k_grading_ratio = 1.15;   // substrate element growth per element, -
-constexpr double k_size_velocity = 250.0;  // m/s per extra particle radius of substrate
-constexpr double k_rigid_factor = 3.0;     // substrate yield / particle flow stress for rigid
+constexpr double k_gap = 1e-3;                   // initial gap / particle radius, -
+constexpr double k_grading_ratio = 1.15;         // substrate element growth per element, -
+constexpr double k_size_velocity = 250.0;        // m/s per extra particle radius of substrate
+constexpr double k_rigid_factor = 3.0;           // substrate yield / particle flow stress for rigid
+constexpr double k_hourglass_coefficient = 0.1;  // stiffness-form hourglass coefficient, -
+constexpr double k_erosion_dt_fraction = 0.05;   // default geometric erosion, of h / c_p, -
 
 [[noreturn]] void fail(const std::string& pointer, const std::string& message) {
   throw InputError({{pointer, message}});
@@ -44,6 +46,12 @@ double impact_flow_stress(const Material& m) {
   const JohnsonCookParams& jc = m.strength;
   const double rate = 1.0 + jc.C * std::log(std::max(1e7 / jc.eps_dot_0, 1.0));
   return (jc.A + jc.B) * rate;
+}
+
+// P-wave speed of the undamaged material, m/s.
+double p_wave_speed(const Material& m) {
+  const double E = m.elastic.E, nu = m.elastic.nu;
+  return std::sqrt(E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu) * m.density));
 }
 
 double effective_modulus(const Material& a, const Material& b) {
@@ -92,6 +100,18 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   const bool damage = pi.value("damage", erosion || adhesion_erosion);
   const std::string fidelity = pi.value("fidelity", "auto");
   const std::string substrate_kind = substrate.value("type", "auto");
+  // Numerics of both bodies (see the header: stiffness hourglass by default).
+  json hourglass = {{"type", "stiffness"}, {"coefficient", k_hourglass_coefficient}};
+  if (pi.contains("hourglass")) hourglass.update(pi.at("hourglass"));
+  const json viscosity = pi.value("artificial_viscosity", json::object());
+  // Erosion: geometric (inverted elements and those whose stable step fell
+  // below a fraction of the initial one) unless switched off, and at the
+  // damage cap only when `erosion` asks for it.
+  const double erosion_fraction = pi.value("erosion_time_step_fraction", k_erosion_dt_fraction);
+  const double c_max = std::max(p_wave_speed(mp), p_wave_speed(ms));
+  const json erosion_block = {{"enabled", erosion || erosion_fraction > 0.0},
+                              {"min_time_step", erosion_fraction * h / c_max},
+                              {"damage", erosion}};
 
   ExpandedImpact out;
   ImpactModelChoice& c = out.choice;
@@ -194,7 +214,9 @@ ExpandedImpact expand_particle_impact(const json& doc) {
        {{"velocity", vec(v * std::sin(rad), 0.0, -v * std::cos(rad))},
         {"temperature", particle.value("temperature", mp.strength.T_ref)}}},
       {"switches", switches(damage)},
-      {"erosion", {{"enabled", erosion}}}};
+      {"hourglass", hourglass},
+      {"artificial_viscosity", viscosity},
+      {"erosion", erosion_block}};
   if (quarter) p["discretization"]["sector"] = "quarter";
   json bodies = json::array({p});
   json bcs = json::array();
@@ -212,7 +234,9 @@ ExpandedImpact expand_particle_impact(const json& doc) {
                 {"grading", {{"focus", vec(0, 0, 0)}, {"ratio", k_grading_ratio}}}}},
               {"initial", {{"temperature", substrate.value("temperature", ms.strength.T_ref)}}},
               {"switches", switches(damage)},
-              {"erosion", {{"enabled", erosion}}}};
+              {"hourglass", hourglass},
+              {"artificial_viscosity", viscosity},
+              {"erosion", erosion_block}};
     if (axi) {
       s["geometry"] = {{"type", "rectangle"}, {"r_max", S}, {"z_min", -S}, {"z_max", 0.0}};
       for (const char* on : {"outer", "bottom"})

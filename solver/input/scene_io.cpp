@@ -409,6 +409,7 @@ BodySpec parse_body(const json& j, const std::string& p, const std::filesystem::
   const json& er = member_or_empty(j, "erosion");
   b.erosion = value_or(er, "enabled", false);
   b.erosion_min_time_step = value_or(er, "min_time_step", 0.0);
+  b.erosion_on_damage = value_or(er, "damage", true);
   return b;
 }
 
@@ -441,7 +442,10 @@ json body_to_json(const BodySpec& b) {
       {"hourglass",
        {{"type", name_of(hourglass_names, b.hourglass)}, {"coefficient", b.hourglass_coefficient}}},
       {"artificial_viscosity", {{"linear", b.q_linear}, {"quadratic", b.q_quadratic}}},
-      {"erosion", {{"enabled", b.erosion}, {"min_time_step", b.erosion_min_time_step}}},
+      {"erosion",
+       {{"enabled", b.erosion},
+        {"min_time_step", b.erosion_min_time_step},
+        {"damage", b.erosion_on_damage}}},
   };
 }
 
@@ -781,6 +785,20 @@ void apply_override(json& doc, const std::string& text) {
   }
 }
 
+// The impact run's view of an expanded particle_impact block (it carries the
+// model the expansion chose under "model").
+ImpactSpec impact_spec(const json& block) {
+  ImpactSpec impact;
+  const json model = block.value("model", json::object());
+  impact.substrate = model.value("rigid_substrate", false) ? "" : "substrate";
+  impact.velocity = block.at("velocity").get<double>();
+  impact.angle = block.value("angle", 0.0);
+  impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
+  impact.model = model.value("name", "");
+  impact.why = model.value("why", "");
+  return impact;
+}
+
 }  // namespace
 
 LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
@@ -789,14 +807,7 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
     const ExpandedImpact expanded = expand_particle_impact(doc);
     LoadedScene loaded = read_scene(expanded.scene, base_dir);
     const json& block = expanded.scene.at("particle_impact");
-    ImpactSpec impact;
-    impact.substrate = expanded.choice.rigid_substrate ? "" : "substrate";
-    impact.velocity = block.at("velocity").get<double>();
-    impact.angle = block.value("angle", 0.0);
-    impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
-    impact.model = expanded.choice.model;
-    impact.why = expanded.choice.why;
-    loaded.scene.impact = impact;
+    loaded.scene.impact = impact_spec(block);
     loaded.resolved["particle_impact"] = block;
     return loaded;
   }
@@ -868,6 +879,12 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
 
   if (!problems.list.empty()) throw InputError(std::move(problems.list));
   loaded.resolved = scene_to_resolved_json(scene);
+  // An already expanded impact scene (a campaign job, a resolved scene run
+  // again): bodies plus the block with the model the expansion chose.
+  if (const auto pi = doc.find("particle_impact"); pi != doc.end() && pi->contains("model")) {
+    scene.impact = impact_spec(*pi);
+    loaded.resolved["particle_impact"] = *pi;
+  }
   return loaded;
 }
 

@@ -66,6 +66,7 @@ struct BodySpec {
   double q_quadratic = 1.5;            // bulk viscosity, quadratic coefficient, -
   bool erosion = false;  // remove elements at D_max, on inversion, or below min_time_step
   double erosion_min_time_step = 0.0;  // s; 0 = off
+  bool erosion_on_damage = true;       // also erode at the damage cap D_max
 };
 
 enum class BoundaryType { fixed, symmetry, velocity, absorbing };

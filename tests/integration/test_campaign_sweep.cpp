@@ -166,6 +166,33 @@ TEST(campaign_sweep, sweep_and_windows_commands) {
   EXPECT_NE(o.text.find("/velocity/values/0: must be >= 0 (m/s)"), std::string::npos) << o.text;
 }
 
+// A campaign over the particle_impact example (scenes/impact_al_al.json):
+// the axes default to the impact block's fields and the jobs are classified
+// by the same stick / rebound outcome as two-mass jobs, so the window has a
+// critical velocity (rebound at 300 m/s, stick at 500 m/s at 8 elements
+// across; README "Robustness").
+TEST(campaign_sweep, impact_jobs_classify_like_two_mass_jobs) {
+  TempDir t;
+  const fs::path spec = t.path / "impact.json";
+  std::ofstream(spec) << json{{"name", "impact"},
+                              {"base_scene", (k_source / "scenes/impact_al_al.json").string()},
+                              {"velocity", {{"values", {300, 500}}}},
+                              {"G_c", {{"values", {30}}}},
+                              {"job", {{"time_limit", 120}}}}
+                             .dump(2);
+  const std::string db = (t.path / "c.db").string();
+  Output o = run("sweep " + spec.string() + " --db " + db + " --workers 2");
+  ASSERT_EQ(o.code, 0) << o.text;
+  o = run("windows --db " + db + " --format json");
+  ASSERT_EQ(o.code, 0) << o.text;
+  const json rows = json::parse(o.text);
+  ASSERT_EQ(rows.size(), 1u) << o.text;
+  EXPECT_EQ(rows[0].at("params"), json::parse(R"({"G_c": 30})"));
+  ASSERT_TRUE(rows[0].at("critical_velocity").is_number()) << rows[0].dump(2);
+  EXPECT_GT(rows[0].at("critical_velocity").get<double>(), 300.0);
+  EXPECT_LT(rows[0].at("critical_velocity").get<double>(), 500.0);
+}
+
 // `splat sweep` as users run it, killed with SIGKILL in the middle and run
 // again: the second run finishes the campaign, reusing what was stored.
 TEST(campaign_sweep, sweep_command_survives_kill_minus_nine) {

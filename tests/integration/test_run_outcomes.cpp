@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include <unistd.h>
+
 #include "solver/input/schema.hpp"
 #include "solver/io/result_file.hpp"
 
@@ -41,7 +43,8 @@ const std::string taylor = std::string(SPLAT_SOURCE_DIR) + "/scenes/taylor_coppe
 nlohmann::json check_run(const std::string& name, const std::string& sets, int expected_code,
                          const std::string& expected_outcome,
                          const std::string& expected_stop_reason) {
-  const auto dir = std::filesystem::temp_directory_path() / ("splat_outcome_" + name);
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("splat_outcome_" + name + "_" + std::to_string(getpid()));
   std::filesystem::remove_all(dir);
   const Output o = run("run " + taylor + " --json --out " + dir.string() + " " + sets);
   EXPECT_EQ(o.code, expected_code) << o.stdout_text;

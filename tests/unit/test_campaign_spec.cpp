@@ -74,6 +74,28 @@ TEST(campaign_spec, two_mass_defaults_the_pointers) {
   EXPECT_EQ(s.axes[1].unit, "Pa");
 }
 
+TEST(campaign_spec, particle_impact_defaults_the_pointers) {
+  // An impact scene ends stick or rebound like a two-mass one; its axes
+  // default to the fields of the particle_impact block.
+  const json doc = json::parse(R"({
+    "name": "impact",
+    "base_scene": {"name": "impact", "particle_impact": {
+      "particle": {"material": "al-thesis", "radius": 12.5e-6},
+      "velocity": 400, "adhesion": {"G_c": 30, "D_adh_max": 0.5}}},
+    "velocity": {"values": [300, 600]},
+    "G_c": {"values": [10, 30]},
+    "D_adh_max": {"values": [0.5, null]}
+  })");
+  const CampaignSpec s = read_campaign(doc);
+  EXPECT_EQ(s.velocity_pointer, "/particle_impact/velocity");
+  ASSERT_EQ(s.axes.size(), 2u);
+  EXPECT_EQ(s.axes[0].pointer, "/particle_impact/adhesion/G_c");
+  EXPECT_EQ(s.axes[1].pointer, "/particle_impact/adhesion/D_adh_max");
+  const std::vector<ExpandedJob> jobs = expand(s, identity, "v1");
+  ASSERT_EQ(jobs.size(), 8u);
+  EXPECT_EQ(jobs[1].scene.at("/particle_impact/velocity"_json_pointer), 600.0);
+}
+
 TEST(campaign_spec, expansion_is_the_cartesian_product) {
   const CampaignSpec s = read_campaign(two_mass_campaign());
   const std::vector<ExpandedJob> jobs = expand(s, identity, "v1");

@@ -1,0 +1,308 @@
+#include "solver/core/impact_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+
+namespace splat {
+namespace {
+
+constexpr double k_hold_transits = 8.0;     // hold time in particle transits R / c_p, -
+constexpr double k_wall_touch = 1e-9;       // gap / R below which a node touches a rigid wall, -
+constexpr double k_thesis_fraction = 0.01;  // thesis: > 1 % of the most links ever active
+// Particle mass eroded above which the model no longer represents the
+// particle: the verdict is withheld (outcome unstable), -.
+constexpr double k_max_eroded_mass = 0.05;
+// |v_n| / v_impact above which a particle still moving into the substrate at
+// the maximum time has no verdict, -.
+constexpr double k_undecided_speed = 0.05;
+
+std::string format_reason(const char* fmt, double a, double b) {
+  char buf[240];
+  std::snprintf(buf, sizeof buf, fmt, a, b);
+  return buf;
+}
+
+int body_index(const Model& model, const std::string& name) {
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    if (model.bodies[b].name == name) return static_cast<int>(b);
+  }
+  return -1;
+}
+
+// P-wave speed of the undamaged material, m/s.
+double p_wave_speed(const Material& m) {
+  const double E = m.elastic.E, nu = m.elastic.nu;
+  return std::sqrt(E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu) * m.density));
+}
+
+// Height of node position p along the substrate normal (internal frame).
+double height(const Model& model, const Vec3& p) {
+  return model.axisymmetric ? p.y() : p.z();
+}
+
+struct BodyMotion {
+  double mass = 0.0;  // kg, per radian in 2D
+  Vec3 velocity = Vec3::Zero();
+  double kinetic = 0.0;  // J, per radian in 2D
+};
+
+BodyMotion motion(const Model& model, int b) {
+  BodyMotion out;
+  if (b < 0) return out;
+  const FeBody& body = model.bodies[b];
+  const NodeSet& n = model.nodes;
+  Vec3 momentum = Vec3::Zero();
+  for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+    if (n.mass[i] <= 0.0) continue;
+    out.mass += n.mass[i];
+    momentum += n.mass[i] * n.v[i];
+    out.kinetic += 0.5 * n.mass[i] * n.v[i].squaredNorm();
+  }
+  out.velocity = centroid_velocity(model, momentum, out.mass);
+  return out;
+}
+
+double finite_or_zero(double x) {
+  return std::isfinite(x) ? x : 0.0;
+}
+
+}  // namespace
+
+ImpactRun::ImpactRun(const ImpactSpec& spec, const Model& model, double max_time)
+    : spec_(spec), monitor_(VerdictSettings{}), max_time_(max_time) {
+  particle_ = body_index(model, spec.particle);
+  substrate_ = spec.substrate.empty() ? -1 : body_index(model, spec.substrate);
+  for (std::size_t c = 0; c < model.contacts.size(); ++c) {
+    if (model.contacts[c].slave_body() == spec.particle) contact_ = static_cast<int>(c);
+  }
+  if (contact_ >= 0) {
+    const auto& adhesion = model.contacts[contact_].settings().adhesion;
+    links_hold_ = adhesion.has_value() && adhesion->G_c > 0.0;
+  }
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  if (particle_ >= 0) {
+    const FeBody& p = model.bodies[particle_];
+    for (std::size_t i = p.node_begin; i < p.node_end; ++i) {
+      lo = std::min(lo, height(model, model.nodes.x0[i]));
+      hi = std::max(hi, height(model, model.nodes.x0[i]));
+    }
+    radius_ = 0.5 * (hi - lo);
+    settings_.hold_time = k_hold_transits * radius_ / p_wave_speed(p.material);
+  }
+  settings_.impact_speed = spec.velocity;
+  monitor_ = ImpactMonitor(settings_);
+}
+
+ImpactSample ImpactRun::sample(double time, const Model& model) const {
+  ImpactSample s;
+  s.time = time;
+  const double scale = model.axisymmetric ? 2.0 * std::numbers::pi : 1.0;
+  const BodyMotion p = motion(model, particle_);
+  const BodyMotion sub = motion(model, substrate_);
+  const Vec3 rel = p.velocity - sub.velocity;
+  s.v_normal = rel.z();
+  s.kinetic_rel = 0.5 * p.mass * scale * rel.squaredNorm();
+  if (contact_ >= 0) {
+    const ContactStats& st = model.contacts[contact_].stats();
+    s.links_active = links_hold_ ? st.links_active : 0;
+    s.pairs_in_contact = st.in_contact;
+    s.bonded_area = links_hold_ ? st.bonded_area : 0.0;
+  } else if (particle_ >= 0) {
+    const FeBody& body = model.bodies[particle_];
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      if (model.nodes.mass[i] > 0.0 && height(model, model.nodes.x[i]) <= k_wall_touch * radius_)
+        ++s.pairs_in_contact;
+    }
+  }
+  return s;
+}
+
+std::optional<VerdictDecision> ImpactRun::observe(double time, const Model& model) {
+  last_ = sample(time, model);
+  if (initial_kinetic_ < 0.0) {
+    const double scale = model.axisymmetric ? 2.0 * std::numbers::pi : 1.0;
+    initial_kinetic_ = motion(model, particle_).kinetic * scale;
+  }
+  return monitor_.update(last_);
+}
+
+void ImpactRun::finish(RunSummary& s, const Model& model,
+                       const std::optional<VerdictDecision>& settled) {
+  ImpactSummary r;
+  r.model = spec_.model;
+  r.why = spec_.why;
+  r.adaptive = spec_.adaptive_end;
+  r.hold_time = settings_.hold_time;
+  r.max_time = max_time_;
+  r.impact_velocity = spec_.velocity;
+  const double scale = model.axisymmetric ? 2.0 * std::numbers::pi : 1.0;
+  const ImpactSample now = sample(s.end_time, model);
+  r.rebound_velocity = now.v_normal;
+  r.coefficient_of_restitution =
+      spec_.velocity > 0.0 ? std::max(now.v_normal, 0.0) / spec_.velocity : 0.0;
+  r.initial_kinetic = std::max(initial_kinetic_, 0.0);
+  r.final_particle_kinetic = motion(model, particle_).kinetic * scale;
+
+  // Shape of the particle: lateral radius about its axis and lowest point.
+  if (particle_ >= 0) {
+    const FeBody& body = model.bodies[particle_];
+    const NodeSet& n = model.nodes;
+    const bool full_3d = !model.axisymmetric && spec_.model == "fe-3d-full";
+    double cx = 0.0, cy = 0.0, m = 0.0;
+    if (full_3d) {
+      for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+        cx += n.mass[i] * n.x[i].x();
+        cy += n.mass[i] * n.x[i].y();
+        m += n.mass[i];
+      }
+      if (m > 0.0) cx /= m, cy /= m;
+    }
+    double r_max = 0.0, z_min = std::numeric_limits<double>::infinity();
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      if (n.mass[i] <= 0.0) continue;
+      const double lateral =
+          model.axisymmetric ? n.x[i].x() : std::hypot(n.x[i].x() - cx, n.x[i].y() - cy);
+      r_max = std::max(r_max, lateral);
+      z_min = std::min(z_min, height(model, n.x[i]));
+    }
+    r.flattening_ratio = radius_ > 0.0 ? r_max / radius_ : 0.0;
+    r.penetration_depth = std::isfinite(z_min) ? std::max(0.0, -z_min) : 0.0;
+  }
+  for (const BodySummary& b : s.bodies) {
+    r.max_temperature = std::max(r.max_temperature, b.max_temperature);
+    r.max_plastic_strain = std::max(r.max_plastic_strain, b.max_plastic_strain);
+  }
+
+  if (contact_ >= 0) {
+    const ContactInterface& c = model.contacts[contact_];
+    const ContactStats& st = c.stats();
+    r.links_contact = st.ever_in_contact;
+    r.links_activated = st.links_activated;
+    r.links_exhausted = st.links_exhausted;
+    r.links_eroded = st.links_eroded;
+    r.links_active = st.links_active;
+    r.max_links_active = st.max_links_active;
+    r.bonded_area = st.bonded_area;
+    r.adhesion_dissipated = st.adhesion_work;
+    const std::vector<LinkState>& states = c.link_states();
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      if (states[k] == LinkState::none) continue;
+      r.contact_area += slave_node_area(c.slave_surface(), static_cast<int>(k), model.nodes.x);
+    }
+    r.contact_area *= scale;
+    r.bonded_fraction = r.contact_area > 0.0 ? std::min(r.bonded_area / r.contact_area, 1.0) : 0.0;
+  } else {
+    r.links_contact = now.pairs_in_contact;
+  }
+  r.thesis_active_link = r.links_active > 0;
+  r.thesis_one_percent =
+      r.max_links_active > 0 && static_cast<double>(r.links_active) >
+                                    k_thesis_fraction * static_cast<double>(r.max_links_active);
+
+  // Share of the particle's mass eroded.
+  double eroded_fraction = 0.0;
+  if (particle_ >= 0) {
+    const FeBody& body = model.bodies[particle_];
+    double total = 0.0, gone = 0.0;
+    for (std::size_t e = 0; e < body.num_elements(); ++e) {
+      total += body.element_mass[e];
+      if (!body.active[e]) gone += body.element_mass[e];
+    }
+    eroded_fraction = total > 0.0 ? gone / total : 0.0;
+  }
+
+  bool own_end = settled.has_value() || s.stop_reason == "end-time";
+  if (own_end && eroded_fraction > k_max_eroded_mass) {
+    own_end = false;
+    s.outcome = RunOutcome::unstable;
+    s.stop_reason = "erosion-limit";
+    s.reason = format_reason(
+        "no verdict: %.1f %% of the particle's mass was eroded (limit %.0f %%); the mesh cannot "
+        "follow this deformation at this resolution",
+        100.0 * eroded_fraction, 100.0 * k_max_eroded_mass);
+  } else if (own_end && !settled && now.v_normal < -k_undecided_speed * spec_.velocity) {
+    own_end = false;
+    s.outcome = RunOutcome::unstable;
+    s.stop_reason = "undecided";
+    s.reason = format_reason(
+        "no verdict at the end time %.4g s: the particle still moves into the substrate at "
+        "%.4g m/s",
+        s.end_time, -now.v_normal);
+  } else if (!own_end && s.stop_reason == "energy-balance") {
+    // Say which term broke the balance (all as fractions of the initial energy).
+    const EnergyBudget& e = s.energy;
+    const double E0 = std::max(e.initial_total, 1e-300);
+    s.reason += format_reason(" (contact work %+.3g, eroded %.3g of the initial energy",
+                              e.contact_work / E0, e.eroded / E0);
+    s.reason +=
+        format_reason("; hourglass %.3g, kinetic now %.3g)", e.hourglass / E0, e.kinetic / E0);
+  }
+  if (own_end) {
+    const VerdictDecision d = settled ? *settled : monitor_.at_end(now);
+    r.verdict = d.verdict == ImpactVerdict::stick ? "stick" : "rebound";
+    r.settled = d.settled;
+    s.outcome = d.verdict == ImpactVerdict::stick ? RunOutcome::stick : RunOutcome::rebound;
+    s.reason = d.reason;
+    if (!spec_.adaptive_end) {
+      s.stop_reason = "end-time";
+    } else {
+      s.stop_reason = settled ? "verdict-settled" : "max-time";
+    }
+  } else {
+    r.verdict = "none";
+  }
+  // A run that went unstable may have left non-finite numbers behind: the
+  // figures report zero for those (the outcome says the run is not usable).
+  for (double* x :
+       {&r.rebound_velocity, &r.coefficient_of_restitution, &r.bonded_area, &r.contact_area,
+        &r.bonded_fraction, &r.initial_kinetic, &r.final_particle_kinetic, &r.adhesion_dissipated,
+        &r.max_temperature, &r.max_plastic_strain, &r.flattening_ratio, &r.penetration_depth}) {
+    *x = finite_or_zero(*x);
+  }
+  s.impact = r;
+}
+
+void write_impact_attributes(ResultFile& file, const RunSummary& s) {
+  const ImpactSummary& r = *s.impact;
+  file.set_attribute("verdict", r.verdict);
+  file.set_attribute("verdict_settled", static_cast<long long>(r.settled));
+  file.set_attribute("impact_velocity", r.impact_velocity, "m/s");
+  file.set_attribute("rebound_velocity", r.rebound_velocity, "m/s");
+  file.set_attribute("coefficient_of_restitution", r.coefficient_of_restitution, "-");
+  file.set_attribute("bonded_area", r.bonded_area, "m^2");
+  file.set_attribute("contact_area", r.contact_area, "m^2");
+  file.set_attribute("bonded_fraction", r.bonded_fraction, "-");
+  file.set_attribute("links.contact", r.links_contact);
+  file.set_attribute("links.activated", r.links_activated);
+  file.set_attribute("links.exhausted", r.links_exhausted);
+  file.set_attribute("links.eroded", r.links_eroded);
+  file.set_attribute("links.active", r.links_active);
+  file.set_attribute("links.max_active", r.max_links_active);
+  file.set_attribute("thesis_criteria.active_link", static_cast<long long>(r.thesis_active_link));
+  file.set_attribute("thesis_criteria.one_percent_stuck",
+                     static_cast<long long>(r.thesis_one_percent));
+  file.set_attribute("energy.initial_kinetic", r.initial_kinetic, "J");
+  file.set_attribute("energy.final_particle_kinetic", r.final_particle_kinetic, "J");
+  file.set_attribute("energy.adhesion_dissipated", r.adhesion_dissipated, "J");
+  file.set_attribute("energy.plastic_work", s.energy.plastic_work, "J");
+  file.set_attribute("energy.absorbed", s.energy.absorbed, "J");
+  file.set_attribute("energy.hourglass", s.energy.hourglass, "J");
+  file.set_attribute("energy.eroded", s.energy.eroded, "J");
+  file.set_attribute("energy.balance_error", s.energy.balance_error, "-");
+  file.set_attribute("wall_seconds", s.wall_seconds, "s");
+  file.set_attribute("max_temperature", r.max_temperature, "K");
+  file.set_attribute("max_plastic_strain", r.max_plastic_strain, "-");
+  file.set_attribute("flattening_ratio", r.flattening_ratio, "-");
+  file.set_attribute("penetration_depth", r.penetration_depth, "m");
+  file.set_attribute("hold_time", r.hold_time, "s");
+  file.set_attribute("max_time", r.max_time, "s");
+  file.set_attribute("end_time_rule", r.adaptive ? "adaptive" : "fixed");
+  file.set_attribute("model.name", r.model);
+  file.set_attribute("model.why", r.why);
+}
+
+}  // namespace splat

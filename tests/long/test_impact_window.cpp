@@ -1,0 +1,90 @@
+// impact_window: the three adhesion variants of thesis 3.5.3 (Al on Al,
+// R 12.5 um, G_c 30 J/m^2, no sigma_c) swept in velocity with a simple loop at
+// 8 elements across, to show the behaviours of the thesis's Fig. 3.48:
+//   no criteria (scenes/impact_al_al_no_criteria.json): links form at every
+//     speed (some adhesion everywhere);
+//   activation (scenes/impact_al_al_activation.json, 30 % yield drop): no link
+//     below a critical velocity;
+//   activation and erosion (scenes/impact_al_al.json, D_adh_max 0.5): as
+//     activation, and adhesion lost again above a maximum velocity - which
+//     this FE model cannot show: from 600 m/s its runs end unstable (jetting
+//     rim; README "Robustness"), and the test only asks for stated outcomes.
+// Prints the table (velocity, outcome, links activated, bonded area).
+// Run with: ctest --test-dir build -L long -R impact_window --output-on-failure
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "solver/core/simulation.hpp"
+#include "solver/input/scene_io.hpp"
+
+namespace splat {
+namespace {
+
+struct Point {
+  double velocity = 0.0;
+  std::string outcome;
+  long long activated = 0;
+  double bonded_area = 0.0;
+};
+
+std::vector<Point> sweep(const std::string& scene) {
+  std::vector<Point> out;
+  std::printf("%s\n", scene.c_str());
+  for (double v = 100.0; v <= 700.0; v += 100.0) {
+    const LoadedScene loaded =
+        load_scene(std::filesystem::path(SPLAT_SOURCE_DIR) / "scenes" / scene,
+                   {"/particle_impact/velocity=" + std::to_string(v)});
+    SimulationOptions options;
+    options.threads = 1;
+    Simulation sim(loaded.scene, loaded.resolved, options);
+    const RunSummary s = sim.run();
+    Point p;
+    p.velocity = v;
+    p.outcome = to_string(s.outcome);
+    EXPECT_TRUE(p.outcome == "stick" || p.outcome == "rebound" || p.outcome == "unstable")
+        << p.outcome;
+    EXPECT_FALSE(s.reason.empty());
+    if (s.impact) {
+      p.activated = s.impact->links_activated;
+      p.bonded_area = s.impact->bonded_area;
+    }
+    std::printf("  %6.0f m/s  %-9s links activated %3lld  bonded area %.3e m^2  (%s)\n", v,
+                p.outcome.c_str(), p.activated, p.bonded_area, s.stop_reason.c_str());
+    out.push_back(p);
+  }
+  return out;
+}
+
+TEST(impact_window, thesis_variants_show_the_three_behaviours) {
+  const std::vector<Point> none = sweep("impact_al_al_no_criteria.json");
+  const std::vector<Point> activation = sweep("impact_al_al_activation.json");
+  const std::vector<Point> erosion = sweep("impact_al_al.json");
+  // No criteria: links form at every speed that gives a verdict.
+  for (const Point& p : none) {
+    if (p.outcome != "unstable") {
+      EXPECT_GT(p.activated, 0) << p.velocity;
+    }
+  }
+  // Activation: nothing bonds at 100 m/s, something at some higher speed,
+  // and the bonded speeds lie above the unbonded ones (a critical velocity).
+  EXPECT_EQ(activation.front().activated, 0);
+  double highest_unbonded = 0.0, lowest_bonded = 1e9;
+  for (const Point& p : activation) {
+    if (p.outcome == "unstable") continue;
+    if (p.activated == 0) highest_unbonded = std::max(highest_unbonded, p.velocity);
+    if (p.outcome == "stick") lowest_bonded = std::min(lowest_bonded, p.velocity);
+  }
+  EXPECT_LT(lowest_bonded, 1e9) << "no stick with activation up to 700 m/s";
+  EXPECT_LT(highest_unbonded, lowest_bonded);
+  std::printf("activation: critical velocity between %.0f and %.0f m/s\n", highest_unbonded,
+              lowest_bonded);
+  EXPECT_EQ(erosion.front().activated, 0);
+}
+
+}  // namespace
+}  // namespace splat
