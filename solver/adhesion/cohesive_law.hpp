@@ -22,46 +22,60 @@
 // longer bond (contact -> eroded): damaged material is a third body.
 //
 // Work against separation, per step (cohesive_step). Let
-//   g_free  the separation rate the pair would have at the end of the step
-//           without this link's impulse (m/s),
+//   g_prev  the pair's separation rate at the start of the step (m/s),
+//   g_free  the rate it would have at the end of the step without this
+//           link's impulse (m/s),
 //   h       the pair's effective inverse mass along n, h = H_ii = C_i M^-1 C_i^T
 //           (1/kg; for two point masses h = 1/m_1 + 1/m_2),
 //   I       the link impulse, 0 <= I <= I_hold = g_free / h (I_hold stops the
 //           opening exactly; more would pull the pair together),
-//   g_after = g_free - h I.
-// The discrete work done against the separation is
-//   dW = I (g_free + g_after) / 2 = I g_free - h I^2 / 2          (J)
-// which is exactly the relative kinetic energy the impulse removes,
-// (g_free^2 - g_after^2) / (2 h): for one pair the energy bookkeeping is exact
-// for any dt, and dW >= 0 on the allowed range of I. The accumulated work W
-// never exceeds the budget G_c A: if dW would pass the remaining budget
-// W_rem = G_c A - W, the impulse is reduced to the root of
-//   I g_free - h I^2 / 2 = W_rem,  I = 2 W_rem / (g_free + sqrt(g_free^2 - 2 h W_rem)),
-// (the smaller root; it exists because dW(I) < dW(I_hold) = g_free^2 / (2h)),
-// the work of the step is exactly W_rem, and the link is exhausted.
-// The tension cap limits I <= sigma_c A dt. Without a cap (Griffith form)
-// the multiplier itself holds the pair: I = I_hold.
+//   g_after = g_free - h I, the rate at the end of the step.
+// The work the link force does on the opening during the step is, exactly
+// for the central-difference (leapfrog) update that moves the rate from
+// g_prev to g_after,
+//   dW = I (g_prev + g_after) / 2                                  (J)
+// (for one mass, 1/2 m (v+^2 - v-^2) = F dt (v- + v+) / 2), clamped at 0 for
+// the budget. A link that holds its pair (g_prev = g_after = 0) does no work,
+// whatever the step, so the budget no longer depends on dt under smooth
+// loading (the thesis's eq. 1.19); a link that catches a pair arriving with
+// g_prev > 0 is charged the kinetic energy it takes out (g_prev^2 / (2h) when
+// nothing else acts, which gives the two-mass closed form for any dt); a
+// capped link that opens at sigma_c is charged sigma_c A times the opening
+// (Dugdale-Barenblatt, eq. 1.28 in the continuous limit).
 //
-// Griffith form under smooth loading: a holding impulse that only cancels
-// the opening one step of smooth forces would produce is charged
-// dW = g_free^2 / (2h) = O(dt^2) per step, so a held link under a steady pull
-// spends its budget at a rate O(dt) that vanishes as dt -> 0 (a rigid holding
-// constraint does no work). In the limit the uncapped link dissipates only on
-// velocity jumps (impacts); the two-mass model shows it (k > 0, no cap:
-// the answer is the free-mass one).
+// Energy stored by the link force (Griffith form). A rigid link can hold any
+// force without doing work, so the work alone would let an uncapped link hold
+// for ever under a steady pull. The link force F = I / dt also strains the
+// material on both sides; releasing the link would give back
+//   U = c F^2 / 2,  c = compliance of the two sides along n (m/N),
+// the virtual-crack-closure estimate of the energy a debond of this link's
+// area releases (c = h_e / (M A) per side for an element of thickness h_e
+// and P-wave modulus M = K + 4G/3 under the area A). The link breaks when
+//   W + dW + U >= G_c A,
+// i.e. when the work done on it plus what its release would set free covers
+// the budget. Both terms are state functions of the motion, so the verdict
+// converges as dt -> 0. Like the thesis's per-link budget (G_c pi R_SPH^2)
+// the criterion depends on the mesh through c and A: it is a nodal Griffith
+// criterion whose flaw size is the element size. With c = 0 (rigid bodies,
+// the two-mass model) only the work counts.
+// When the budget is reached during a step the impulse is reduced to the
+// largest I with W + dW(I) + U(I) <= G_c A (bisection), the step's charge is
+// exactly the remaining budget W_rem = G_c A - W, and the link is exhausted.
+// The tension cap limits I <= sigma_c A dt. Without a cap (Griffith form)
+// the multiplier itself holds the pair: I = I_hold until the budget is spent.
 //
 // Several pairs (the contact solver): H couples the pairs, so "g_free" of one
 // pair depends on the impulses of its neighbours. The contact stage uses the
 // diagonal (projected Gauss-Seidel) approximation: for pair i, g_free is the
-// rate with every other pair's current impulse applied and h = H_ii; the sum
-// of the pairs' dW is then the kinetic energy removed only up to the
-// off-diagonal terms of H (exact when no two links share a node).
+// rate with every other pair's current impulse applied and h = H_ii.
 //
 // Deviations from the thesis:
 //  - eq. 1.19 takes the work of a step as dt lambda g_dot(n+1), the rate after
-//    the force; a link that holds the pair (g_after = 0) would then do no work
-//    at all, and a velocity jump would never be charged to the budget. The
-//    trapezoid above charges exactly the kinetic energy taken out.
+//    the force only; a velocity jump stopped in one step would then never be
+//    charged. The average of the rates before and after is the exact discrete
+//    work of the update. The stored-energy term U is ours: without it an
+//    uncapped link is exhausted only by jumps (or, with eq. 1.21's n+3/2
+//    rates, by a charge that shrinks with dt).
 //  - eq. 1.21 uses the velocity at n+3/2 for unilateral contact; that is a
 //    contact (not a cohesive) choice and is left to the contact stage.
 //  - With a cap, eq. 1.28 (G_c = sigma_c gap_c) is the continuous limit of
@@ -163,24 +177,32 @@ inline double work_budget(const AdhesionParams& p, double area) {
   return p.G_c * area;
 }
 
+// The motion of one pair in one step, as cohesive_step needs it.
+struct LinkKinematics {
+  double g_prev = 0.0;      // separation rate at the start of the step, m/s
+  double g_free = 0.0;      // rate at the end of the step without this link's impulse, m/s
+  double h = 0.0;           // effective inverse mass along the normal, 1/kg
+  double compliance = 0.0;  // c, compliance of both sides along the normal, m/N (0: rigid)
+};
+
 // Result of one step of an active link.
 struct CohesiveStep {
   double impulse = 0.0;    // I = lambda dt >= 0, tension impulse to apply (N s)
-  double work = 0.0;       // dW >= 0 done against the separation this step (J)
-  bool exhausted = false;  // W + dW reached G_c A this step: the link breaks
+  double work = 0.0;       // budget charged this step (J): dW, or W_rem when exhausted
+  double stored = 0.0;     // U = c (I/dt)^2 / 2 with the impulse applied, J
+  bool exhausted = false;  // W + dW + U reached G_c A this step: the link breaks
 };
 
 // One step of an active link (see the header comment for the definitions):
 //   area       adhesive area of the pair, m^2
-//   work_done  W, work already done against separation by this link, J
-//   g_free     separation rate without this link's impulse, m/s (> 0: opening)
-//   h          effective inverse mass along the normal, 1/kg (> 0)
+//   work_done  W, work already charged to this link's budget, J
+//   k          the pair's rates, inverse mass and compliance
 //   dt         time step, s
 //   wanted     the tension impulse the solver asks for, N s; default: hold
 //              (I_hold = g_free / h). Clamped to [0, min(I_hold, sigma_c A dt)].
 // A closing or resting pair (g_free <= 0) or h <= 0 gets no tension and no work.
-CohesiveStep cohesive_step(const AdhesionParams& p, double area, double work_done, double g_free,
-                           double h, double dt,
+CohesiveStep cohesive_step(const AdhesionParams& p, double area, double work_done,
+                           const LinkKinematics& k, double dt,
                            double wanted = std::numeric_limits<double>::infinity());
 
 }  // namespace splat

@@ -22,6 +22,7 @@ ContactInterface::ContactInterface(std::string master_body, std::string slave_bo
       link_state_(slave_.nodes.size(), LinkState::none),
       link_work_(slave_.nodes.size(), 0.0),
       link_area_(slave_.nodes.size(), 0.0),
+      link_rate_(slave_.nodes.size(), 0.0),
       link_face_(slave_.nodes.size(), -1),
       link_touching_(slave_.nodes.size(), 0) {}
 
@@ -205,6 +206,30 @@ SideYield ContactInterface::master_side_yield(const FeBody& master, int f, doubl
   return {st.sigma_y_static, st.sigma_y_static_peak};
 }
 
+double ContactInterface::link_compliance(int k, int f, const std::vector<FeBody>& bodies) const {
+  const double A = link_area_[k];
+  if (!(A > 0.0)) return 0.0;
+  // P-wave modulus M = K + 4G/3 of a body, Pa.
+  const auto modulus = [](const FeBody& b) { return b.constants.K + 4.0 / 3.0 * b.constants.G; };
+  double c = 0.0;
+  const FeBody& slave = bodies[slave_index_];
+  double h_sum = 0.0;
+  int n = 0;
+  for (int j = slave_elem_offsets_[k]; j < slave_elem_offsets_[k + 1]; ++j) {
+    const int e = slave_elem_entries_[j];
+    if (!slave.active[e]) continue;
+    h_sum += slave.char_length[e];
+    ++n;
+  }
+  if (n > 0 && modulus(slave) > 0.0) c += (h_sum / n) / (modulus(slave) * A);
+  const FeBody& master = bodies[master_index_];
+  const int e = f >= 0 ? master_face_element_[f] : -1;
+  if (e >= 0 && master.active[e] && modulus(master) > 0.0) {
+    c += master.char_length[e] / (modulus(master) * A);
+  }
+  return c;
+}
+
 void ContactInterface::update_links_before_solve(const NodeSet& nodes,
                                                  const std::vector<FeBody>& bodies) {
   const AdhesionParams& ap = *settings_.adhesion;
@@ -278,7 +303,8 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       const double h = normal_inverse_mass(problem_, i);
       const double I = -s.p_n[i];
       const double g_free = normal_rate(problem_, i, s.dv) + h * I - problem_.b_hold[i];
-      return cohesive_step(*settings_.adhesion, link_area_[k], link_work_[k], g_free, h, dt, I);
+      const LinkKinematics kin{link_rate_[k], g_free, h, link_compliance(k, pairs[i].face, bodies)};
+      return cohesive_step(*settings_.adhesion, link_area_[k], link_work_[k], kin, dt, I);
     };
     if (!links.empty()) {
       bool resolve = false;
@@ -345,6 +371,14 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       }
     }
     stats_.work += work * scale();
+    if (adhesive) {
+      // Each slave node's opening rate at the end of this step: the rate a
+      // link starts the next step from (0 for nodes in no pair).
+      std::fill(link_rate_.begin(), link_rate_.end(), 0.0);
+      for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+        link_rate_[pairs[i].slave] = normal_rate(problem_, i, v_new);
+      }
+    }
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       if (sol.p_n[i] > 0.0) {
         ++stats_.in_contact;

@@ -137,6 +137,10 @@ class ContactInterface {
   // The yield stresses and damage of each side of slave node k's link.
   SideYield slave_side_yield(const FeBody& slave, int k, double& damage) const;
   SideYield master_side_yield(const FeBody& master, int f, double& damage) const;
+  // Compliance along the normal of slave node k's link over master face f,
+  // both sides in series: sum of h_e / (M A) (cohesive_law.hpp), m/N (per
+  // radian in 2D, like the areas and forces).
+  double link_compliance(int k, int f, const std::vector<FeBody>& bodies) const;
 
   std::string master_body_, slave_body_;
   ContactSurface master_, slave_;
@@ -159,6 +163,7 @@ class ContactInterface {
   // whether it carried a compressive force in the last step.
   std::vector<LinkState> link_state_;
   std::vector<double> link_work_, link_area_;
+  std::vector<double> link_rate_;  // normal opening rate at the end of the last step, m/s
   std::vector<int> link_face_;
   std::vector<std::uint8_t> link_touching_;
   // Penalty forces of the last stage 5 and the velocities they will act on.

@@ -102,7 +102,11 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
     double I = 0.0;  // tension impulse, N s
     bool released = false;
     if (link == LinkState::active) {
-      const CohesiveStep c = cohesive_step(s.adhesion, s.area, W, v_new - V_new, h, dt);
+      // The link starts from the rate at the step start, or from the rate
+      // the contact impulse of this step left (an impact inside the step).
+      const double g_start = P > 0.0 ? v_new - V_new : g_prev;
+      const CohesiveStep c =
+          cohesive_step(s.adhesion, s.area, W, LinkKinematics{g_start, v_new - V_new, h, 0.0}, dt);
       I = c.impulse;
       V_new += I / s.M;
       v_new -= I / s.m;

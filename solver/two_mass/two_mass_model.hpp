@@ -31,10 +31,10 @@
 // energy-exact work rule); the release time converges at first order. For
 // k > 0 everything converges at first order (impact inside a step).
 //
-// Without a cap (Griffith form) and with k > 0 the holding multiplier does
-// work dt^2-small per step (the trapezoid charges the kinetic energy the
-// spring would have given in one step), which vanishes as dt -> 0: in the
-// limit the link dissipates only on velocity jumps (the impacts).
+// Without a cap (Griffith form) and with k > 0 the holding multiplier does no
+// work (the rate is held at 0 before and after the step; cohesive_law.hpp),
+// and the rigid masses store no energy under the link force (compliance 0):
+// the link dissipates only on velocity jumps (the impacts).
 #pragma once
 
 #include <atomic>

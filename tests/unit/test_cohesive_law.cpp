@@ -36,6 +36,10 @@ struct TwoMasses {
     v1 += I / m1;
     v2 -= I / m2;
   }
+  // Nothing else acts in the step: the rate at its start is the free rate.
+  LinkKinematics free_flight(double compliance = 0.0) const {
+    return {rate(), rate(), h(), compliance};
+  }
 };
 
 TEST(cohesive_law, activation_either_and_both_sides) {
@@ -141,14 +145,14 @@ TEST(cohesive_law, link_state_transitions_on_a_two_pair_toy) {
   // Step 4: A opens fast enough to spend its budget in one step (relative
   // kinetic energy 0.5 * 2/3 * 1^2 = 1/3 J > 0.2 J); B opens slowly.
   TwoMasses ma{1.0, 2.0, -1.0 / 3.0, 2.0 / 3.0};
-  const CohesiveStep sa = cohesive_step(p, area, a.work, ma.rate(), ma.h(), 1e-3);
+  const CohesiveStep sa = cohesive_step(p, area, a.work, ma.free_flight(), 1e-3);
   a.work += sa.work;
   a.state = next_link_state(a.state, p.activation, {false, true, false, sa.exhausted});
   EXPECT_TRUE(sa.exhausted);
   EXPECT_EQ(a.state, LinkState::exhausted);
   EXPECT_DOUBLE_EQ(a.work, 0.2);
   TwoMasses mb{1.0, 2.0, 0.0, 0.01};
-  const CohesiveStep sb = cohesive_step(p, area, b.work, mb.rate(), mb.h(), 1e-3);
+  const CohesiveStep sb = cohesive_step(p, area, b.work, mb.free_flight(), 1e-3);
   b.work += sb.work;
   b.state = next_link_state(b.state, p.activation, {true, true, false, sb.exhausted});
   EXPECT_FALSE(sb.exhausted);
@@ -192,7 +196,7 @@ TEST(cohesive_law, griffith_step_holds_the_pair_and_charges_the_kinetic_energy) 
   p.G_c = 10.0;
   TwoMasses m{1.5, 0.5, -0.2, 0.7};
   const double K0 = m.kinetic();
-  const CohesiveStep s = cohesive_step(p, 1.0, 0.0, m.rate(), m.h(), 1e-3);
+  const CohesiveStep s = cohesive_step(p, 1.0, 0.0, m.free_flight(), 1e-3);
   m.apply_tension(s.impulse);
   EXPECT_FALSE(s.exhausted);
   EXPECT_NEAR(m.rate(), 0.0, 1e-15);
@@ -211,7 +215,7 @@ TEST(cohesive_law, capped_step_work_equals_kinetic_energy_lost) {
   for (double dt : {1e-4, 1e-2, 0.05}) {
     TwoMasses m{1.0, 3.0, 0.1, 0.9};
     const double K0 = m.kinetic();
-    const CohesiveStep s = cohesive_step(p, area, 0.0, m.rate(), m.h(), dt);
+    const CohesiveStep s = cohesive_step(p, area, 0.0, m.free_flight(), dt);
     m.apply_tension(s.impulse);
     EXPECT_DOUBLE_EQ(s.impulse, 10.0 * dt);
     EXPECT_GT(m.rate(), 0.0);
@@ -220,12 +224,13 @@ TEST(cohesive_law, capped_step_work_equals_kinetic_energy_lost) {
   }
   // Above the holding impulse the cap does not bind: the pair is held, not pulled back.
   TwoMasses m{1.0, 3.0, 0.1, 0.1001};
-  const CohesiveStep s = cohesive_step(p, area, 0.0, m.rate(), m.h(), 0.05);
+  const CohesiveStep s = cohesive_step(p, area, 0.0, m.free_flight(), 0.05);
   m.apply_tension(s.impulse);
   EXPECT_NEAR(m.rate(), 0.0, 1e-15);
   // The solver may ask for less than the hold; never for more, never negative.
-  EXPECT_DOUBLE_EQ(cohesive_step(p, area, 0.0, 0.8, 4.0 / 3.0, 0.05, 0.1).impulse, 0.1);
-  EXPECT_DOUBLE_EQ(cohesive_step(p, area, 0.0, 0.8, 4.0 / 3.0, 0.05, -1.0).impulse, 0.0);
+  EXPECT_DOUBLE_EQ(cohesive_step(p, area, 0.0, {0.8, 0.8, 4.0 / 3.0, 0.0}, 0.05, 0.1).impulse, 0.1);
+  EXPECT_DOUBLE_EQ(cohesive_step(p, area, 0.0, {0.8, 0.8, 4.0 / 3.0, 0.0}, 0.05, -1.0).impulse,
+                   0.0);
 }
 
 // The step that spends the budget: work exactly W_rem, kinetic energy lost
@@ -238,7 +243,7 @@ TEST(cohesive_law, exhausting_step_spends_exactly_the_remaining_budget) {
     const double area = 1.0, dt = 0.1, W = 0.15;  // W_rem = 0.05 J
     TwoMasses m{1.0, 2.0, -1.0 / 3.0, 2.0 / 3.0};
     const double K0 = m.kinetic();
-    const CohesiveStep s = cohesive_step(p, area, W, m.rate(), m.h(), dt);
+    const CohesiveStep s = cohesive_step(p, area, W, m.free_flight(), dt);
     m.apply_tension(s.impulse);
     EXPECT_TRUE(s.exhausted) << capped;
     EXPECT_DOUBLE_EQ(s.work, 0.05);
@@ -248,7 +253,7 @@ TEST(cohesive_law, exhausting_step_spends_exactly_the_remaining_budget) {
   }
   // G_c = 0: the first opening step exhausts the link with no impulse.
   AdhesionParams p0;
-  const CohesiveStep s0 = cohesive_step(p0, 1.0, 0.0, 1.0, 1.5, 1e-3);
+  const CohesiveStep s0 = cohesive_step(p0, 1.0, 0.0, {1.0, 1.0, 1.5, 0.0}, 1e-3);
   EXPECT_TRUE(s0.exhausted);
   EXPECT_EQ(s0.impulse, 0.0);
   EXPECT_EQ(s0.work, 0.0);
@@ -258,12 +263,12 @@ TEST(cohesive_law, closing_pairs_carry_no_tension) {
   AdhesionParams p;
   p.G_c = 1.0;
   for (double g : {-1.0, 0.0}) {
-    const CohesiveStep s = cohesive_step(p, 1.0, 0.0, g, 1.5, 1e-3);
+    const CohesiveStep s = cohesive_step(p, 1.0, 0.0, {g, g, 1.5, 0.0}, 1e-3);
     EXPECT_EQ(s.impulse, 0.0);
     EXPECT_EQ(s.work, 0.0);
     EXPECT_FALSE(s.exhausted);
   }
-  EXPECT_EQ(cohesive_step(p, 1.0, 0.0, 1.0, 0.0, 1e-3).impulse, 0.0);  // immovable pair
+  EXPECT_EQ(cohesive_step(p, 1.0, 0.0, {1.0, 1.0, 0.0, 0.0}, 1e-3).impulse, 0.0);  // immovable pair
 }
 
 // Many capped steps: the work sums to the budget and never beyond, and the
@@ -278,7 +283,7 @@ TEST(cohesive_law, work_never_exceeds_the_budget) {
   bool exhausted = false;
   int steps = 0;
   while (!exhausted && steps < 100000) {
-    const CohesiveStep s = cohesive_step(p, 1.0, W, m.rate(), m.h(), 1e-3);
+    const CohesiveStep s = cohesive_step(p, 1.0, W, m.free_flight(), 1e-3);
     m.apply_tension(s.impulse);
     W += s.work;
     exhausted = s.exhausted;
@@ -288,6 +293,67 @@ TEST(cohesive_law, work_never_exceeds_the_budget) {
   EXPECT_TRUE(exhausted);
   EXPECT_DOUBLE_EQ(W, 0.2);
   EXPECT_NEAR(K0 - m.kinetic(), W, 1e-13);
+}
+
+// A steady pull held by an uncapped link: two masses, a force f(t) = f_dot t
+// pulls mass 2 away; the link holds the pair (rate 0 before and after every
+// step), so its work is exactly zero for any dt, and it lets go when the
+// energy its force stores in the compliance c, c F^2 / 2, reaches G_c A:
+// at F_break = sqrt(2 G_c A / c), whatever the step. (The previous rule
+// charged the kinetic energy of each step's virtual opening, h (F dt)^2 / 2,
+// so the link broke later and later as dt shrank.)
+TEST(cohesive_law, steady_pull_breaks_at_the_griffith_force_for_any_dt) {
+  AdhesionParams p;
+  p.G_c = 0.5;
+  const double area = 2.0, c = 1e-3, f_dot = 1e4;            // m^2, m/N, N/s
+  const double F_break = std::sqrt(2.0 * p.G_c * area / c);  // 44.72 N
+  for (double dt : {1e-4, 1e-5, 1e-6}) {
+    TwoMasses m{1.0, 2.0, 0.0, 0.0};
+    double W = 0.0, t = 0.0, F_last = 0.0;
+    bool exhausted = false;
+    while (!exhausted && t < 1.0) {
+      const double g_prev = m.rate();
+      t += dt;
+      m.v2 += dt * f_dot * t / m.m2;  // the pull, before the link
+      const CohesiveStep s = cohesive_step(p, area, W, {g_prev, m.rate(), m.h(), c}, dt);
+      m.apply_tension(s.impulse);
+      if (!s.exhausted) {
+        EXPECT_LE(s.work, 1e-12 * p.G_c * area) << dt;
+      }
+      W += s.work;
+      exhausted = s.exhausted;
+      F_last = s.impulse / dt;
+    }
+    ASSERT_TRUE(exhausted) << dt;
+    EXPECT_DOUBLE_EQ(W, p.G_c * area);
+    // The link force tracks m1's share of the pull, f t m1 / (m1 + m2); it
+    // breaks within one step's load increment of F_break.
+    EXPECT_NEAR(F_last, F_break, 1e-9 * F_break + f_dot * dt) << dt;
+    EXPECT_NEAR(t * f_dot / 3.0, F_break, 2.0 * f_dot * dt) << dt;
+  }
+}
+
+// The work charged is the exact work of the link force in the leapfrog
+// update, whatever else acts in the step: with an external force on mass 2,
+// kinetic energy change = external work + link work, each force's work being
+// F dt (v_before + v_after) / 2 (1/2 m (v+^2 - v-^2) = m (v+ - v-)(v+ + v-) / 2).
+TEST(cohesive_law, capped_work_is_the_exact_discrete_work) {
+  AdhesionParams p;
+  p.G_c = 100.0;
+  p.sigma_c = 2.0;
+  const double area = 1.0, dt = 0.05, f = 30.0;  // cap 2 N, pull 30 N
+  TwoMasses m{1.0, 2.0, -0.1, 0.4};
+  for (int step = 0; step < 20; ++step) {
+    const double K0 = m.kinetic();
+    const double v2_before = m.v2, g_prev = m.rate();
+    m.v2 += dt * f / m.m2;
+    const CohesiveStep s = cohesive_step(p, area, 0.0, {g_prev, m.rate(), m.h(), 0.0}, dt);
+    m.apply_tension(s.impulse);
+    ASSERT_DOUBLE_EQ(s.impulse, 2.0 * dt);  // the cap binds: the pair opens
+    const double W_ext = f * dt * 0.5 * (v2_before + m.v2);
+    EXPECT_NEAR(m.kinetic() - K0, W_ext - s.work, 1e-12 * m.kinetic()) << step;
+    EXPECT_NEAR(s.work, 2.0 * dt * 0.5 * (g_prev + m.rate()), 1e-15) << step;
+  }
 }
 
 }  // namespace
