@@ -13,6 +13,8 @@
 #include "solver/common/types.hpp"
 #include "solver/contact/contact_types.hpp"
 #include "solver/material/material.hpp"
+#include "solver/sph/sph_body.hpp"
+#include "solver/sph/sph_particles.hpp"
 
 namespace splat {
 
@@ -66,6 +68,12 @@ struct BodySpec {
   double q_quadratic = 1.5;            // bulk viscosity, quadratic coefficient, -
   bool erosion = false;  // remove elements at D_max, on inversion, or below min_time_step
   double erosion_min_time_step = 0.0;  // s; 0 = off
+  // sph bodies only: the particle spacing is element_size, or the
+  // characteristic length over elements_across.
+  SphSettings sph;                 // kernel, viscosity, hourglass, reference update
+  Lattice lattice = Lattice::hcp;  // particle lattice
+  double sph_jitter = 0.0;         // random displacement, fraction of the spacing, -
+  int sph_boundary_layers = 3;     // particle layers tagged per face, in spacings, -
 };
 
 enum class BoundaryType { fixed, symmetry, velocity, absorbing };

@@ -337,6 +337,8 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   // hourglass modulus ((1 - D) E, or the flow stress once plastic).
   b.rho.resize(n);
   b.E_hg.resize(n);
+  b.f_visc.assign(n, Vec3::Zero());
+  b.f_hg.assign(n, Vec3::Zero());
   for_blocks(n, blocks, [&](std::size_t i, BlockSums&) {
     const PointState& st = b.state[i];
     b.rho[i] = mat.density / (b.J_ref[i] * std::max(b.F[i].determinant(), 1e-12));
@@ -409,6 +411,8 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       }
     }
     nodes.f[gi] += f_stress + f_visc + f_hg;
+    b.f_visc[i] = f_visc;
+    b.f_hg[i] = f_hg;
     s.viscosity_power -= f_visc.dot(vi);
     s.hourglass_power -= f_hg.dot(vi);
     // A particle without active neighbours keeps the bound of its spacing.

@@ -131,6 +131,8 @@ struct SphBody {
   std::vector<double> rho;           // current density, kg/m^3
   std::vector<double> E_hg;          // hourglass modulus, Pa
   std::vector<std::uint8_t> active;  // 0 once deactivated
+  std::vector<Vec3> f_visc;          // artificial-viscosity force of the last call, N
+  std::vector<Vec3> f_hg;            // hourglass force of the last call, N
 
   std::size_t size() const { return node_end - node_begin; }
 };
