@@ -351,6 +351,25 @@ Model build_model(const Scene& scene) {
     }
     return make_contact_surface(kind, std::move(faces));
   };
+  // SPH bodies: the particles of the boundary layers (any face bit but the
+  // excluded symmetry planes) as pinballs of radius half the spacing (the
+  // thesis's "SPH radius": 1.25 um at 2.5 um spacing, 740 particles in a
+  // 12.5 um ball).
+  auto particle_surface_of = [&](std::size_t b) {
+    const SphBody& body = model.sph_bodies[model.body_refs[b].index];
+    std::vector<int> ids;
+    std::vector<double> radius;
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      if (!(model.nodes.boundary[i] & ~excluded[b])) continue;
+      ids.push_back(static_cast<int>(i));
+      radius.push_back(0.5 * body.spacing);
+    }
+    return make_particle_surface(ids, radius);
+  };
+  auto bulk_modulus_of = [&](std::size_t b) {
+    const BodyRef r = model.body_refs[b];
+    return r.sph ? model.sph_bodies[r.index].constants.K : model.bodies[r.index].constants.K;
+  };
   for (std::size_t ci = 0; ci < scene.interactions.size(); ++ci) {
     const InteractionSpec& it = scene.interactions[ci];
     if (it.type != InteractionType::contact) continue;
@@ -358,8 +377,14 @@ Model build_model(const Scene& scene) {
     const std::size_t mb = body_index(it.master, ptr + "/master");
     const std::size_t sb = body_index(it.slave, ptr + "/slave");
     if (mb == sb) fail(ptr + "/slave", "must differ from master");
-    if (model.body_refs[mb].sph || model.body_refs[sb].sph) {
-      fail(ptr, "contact with sph bodies is not available yet");
+    const bool master_sph = model.body_refs[mb].sph, slave_sph = model.body_refs[sb].sph;
+    if (master_sph && !slave_sph) {
+      fail(ptr + "/master",
+           "an sph master needs an sph slave; make the sph body the slave of "
+           "the FE body (SPH particles on FE faces)");
+    }
+    if ((master_sph || slave_sph) && it.two_pass) {
+      fail(ptr + "/two_pass", "two-pass contact is for FE pairs only");
     }
     ContactSettings cs;
     cs.method = it.method;
@@ -367,7 +392,7 @@ Model build_model(const Scene& scene) {
     cs.solver.kind = it.solver;
     cs.two_pass = it.two_pass;
     cs.adhesion = it.adhesion;
-    ContactSurface master = surface_of(mb);
+    ContactSurface master = master_sph ? particle_surface_of(mb) : surface_of(mb);
     if (it.method == ContactMethod::penalty) {
       cs.penalty_stiffness = it.penalty_stiffness;
       if (!(cs.penalty_stiffness > 0.0)) {
@@ -377,15 +402,16 @@ Model build_model(const Scene& scene) {
         for (std::size_t f = 0; f < master.faces.size(); ++f) {
           h = std::min(h, face_size(master, static_cast<int>(f), model.nodes.x0));
         }
-        const double K = std::min(model.bodies[model.body_refs[mb].index].constants.K,
-                                  model.bodies[model.body_refs[sb].index].constants.K);
+        const double K = std::min(bulk_modulus_of(mb), bulk_modulus_of(sb));
         if (!std::isfinite(h) || !(h > 0.0)) fail(ptr + "/master", "the body has no contact faces");
         cs.penalty_stiffness = 0.1 * K / h;
       }
     }
-    model.contacts.emplace_back(it.master, it.slave, std::move(master), surface_of(sb), cs,
+    model.contacts.emplace_back(it.master, it.slave, std::move(master),
+                                slave_sph ? particle_surface_of(sb) : surface_of(sb), cs,
                                 model.axisymmetric, n);
-    model.contacts.back().attach_bodies(model.bodies, model.body_refs[mb].index,
+    model.contacts.back().attach_bodies(model.bodies, model.sph_bodies, master_sph,
+                                        model.body_refs[mb].index, slave_sph,
                                         model.body_refs[sb].index);
   }
 

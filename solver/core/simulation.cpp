@@ -95,7 +95,7 @@ void Simulation::Impl::predict_positions() {
 void Simulation::Impl::contact_constraints() {
   for (ContactInterface& c : model.contacts) {
     if (c.settings().method == ContactMethod::lagrange) {
-      c.lagrange_step(model.nodes, model.constraint_mask, dt_half, model.bodies);
+      c.lagrange_step(model.nodes, model.constraint_mask, dt_half, model.bodies, model.sph_bodies);
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "solver/core/model_builder.hpp"
 #include "solver/core/simulation_impl.hpp"
@@ -84,6 +85,7 @@ void Simulation::Impl::sph_energies(double& internal, double& plastic) const {
   }
 }
 
+// Appends the SPH bodies' summaries and puts all bodies in scene order.
 void Simulation::Impl::sph_summaries(RunSummary& s) const {
   const NodeSet& n = model.nodes;
   for (const SphBody& b : model.sph_bodies) {
@@ -114,6 +116,12 @@ void Simulation::Impl::sph_summaries(RunSummary& s) const {
     bs.extent_max = hi;
     s.bodies.push_back(bs);
   }
+  // Scene order: fill_summary wrote the FE bodies first, then these.
+  std::vector<BodySummary> ordered;
+  const std::size_t fe = model.bodies.size();
+  for (const BodyRef& r : model.body_refs)
+    ordered.push_back(s.bodies[r.sph ? fe + r.index : r.index]);
+  s.bodies = std::move(ordered);
 }
 
 }  // namespace splat
