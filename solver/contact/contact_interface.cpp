@@ -286,7 +286,9 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
   stats_.in_contact = 0;
   stats_.links_in_tension = 0;
   if (adhesive) {
-    for (std::size_t i = 0; i < first_pass_pairs_; ++i) link_face_[pairs[i].slave] = pairs[i].face;
+    for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+      if (pairs[i].primary) link_face_[pairs[i].slave] = pairs[i].face;
+    }
     update_links_before_solve(nodes, bodies, sph);
     std::fill(link_touching_.begin(), link_touching_.end(), 0);
   }
@@ -302,7 +304,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       const AdhesionParams& ap = *settings_.adhesion;
       for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
         const int k = pairs[i].slave;
-        if (link_state_[k] != LinkState::active) continue;
+        if (!pairs[i].primary || link_state_[k] != LinkState::active) continue;
         const double rate = normal_rate(problem_, i, problem_.velocity);
         const double g_n = pairs[i].geometry.gap - dt * rate;
         problem_.lo[i] = -max_tension(ap, link_area_[k]) * dt;

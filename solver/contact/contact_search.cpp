@@ -102,10 +102,11 @@ bool better(const DetectedPair& a, const DetectedPair& b) {
   return a.face < b.face;
 }
 
-// Tests slave node k against face f and keeps the better pair in `best`.
+// Tests slave node k against face f and keeps the better pair in `best`, or,
+// with `all`, appends every pair in range to it.
 void consider(const ContactSurface& master, int f, int k, const Vec3& p, double r_slave,
               const std::vector<Vec3>& x, const SearchSettings& st, double size, DetectedPair& best,
-              bool& found) {
+              bool& found, std::vector<DetectedPair>* all) {
   DetectedPair c;
   c.slave = k;
   c.face = f;
@@ -114,10 +115,27 @@ void consider(const ContactSurface& master, int f, int k, const Vec3& p, double 
   c.geometry.gap -= r_slave;
   if (c.geometry.distance_outside > st.outside_tolerance) return;
   if (c.geometry.gap > st.search_margin * size || c.geometry.gap < -st.capture_depth * size) return;
+  if (all) {
+    all->push_back(c);
+    return;
+  }
   if (!found || better(c, best)) {
     best = c;
     found = true;
   }
+}
+
+// Pinball master: all candidates of one slave, smallest gap (then face) first.
+void append_all(std::vector<DetectedPair>& all, std::vector<DetectedPair>& out) {
+  std::sort(all.begin(), all.end(), [](const DetectedPair& a, const DetectedPair& b) {
+    if (a.geometry.gap != b.geometry.gap) return a.geometry.gap < b.geometry.gap;
+    return a.face < b.face;
+  });
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    all[i].primary = i == 0;
+    out.push_back(all[i]);
+  }
+  all.clear();
 }
 
 }  // namespace
@@ -152,14 +170,18 @@ std::vector<DetectedPair> find_pairs_all_pairs(const ContactSurface& master,
   std::vector<double> sizes(master.faces.size());
   for (std::size_t f = 0; f < sizes.size(); ++f)
     sizes[f] = face_size(master, static_cast<int>(f), x);
+  const bool pinball = master.kind == DetectionKind::particle_pinball;
+  std::vector<DetectedPair> all;
   for (std::size_t k = 0; k < slave.nodes.size(); ++k) {
     const Vec3& p = x[slave.nodes[k]];
     DetectedPair best;
     bool found = false;
     for (std::size_t f = 0; f < master.faces.size(); ++f) {
       consider(master, static_cast<int>(f), static_cast<int>(k), p,
-               slave.node_radius(static_cast<int>(k)), x, st, sizes[f], best, found);
+               slave.node_radius(static_cast<int>(k)), x, st, sizes[f], best, found,
+               pinball ? &all : nullptr);
     }
+    if (pinball) append_all(all, out);
     if (found) out.push_back(best);
   }
   return out;
@@ -214,6 +236,7 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
       for (std::int64_t j = j0; j <= j1; ++j)
         for (std::int64_t k = k0; k <= k1; ++k) grid[key(i, j, k)].push_back(static_cast<int>(f));
   }
+  std::vector<DetectedPair> all;
   for (std::size_t s = 0; s < slave.nodes.size(); ++s) {
     const Vec3& p = x[slave.nodes[s]];
     const auto it = grid.find(key(cell_of(p.x()), cell_of(p.y()), planar ? 0 : cell_of(p.z())));
@@ -223,8 +246,9 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
     for (int f : it->second) {
       if ((p.array() < lo[f].array()).any() || (p.array() > hi[f].array()).any()) continue;
       consider(master, f, static_cast<int>(s), p, slave.node_radius(static_cast<int>(s)), x, st,
-               sizes[f], best, found);
+               sizes[f], best, found, pinball > 0.0 ? &all : nullptr);
     }
+    if (pinball > 0.0) append_all(all, out);
     if (found) out.push_back(best);
   }
   return out;
