@@ -73,6 +73,47 @@ void ContactInterface::attach_bodies(const std::vector<FeBody>& bodies, std::siz
   }
 }
 
+void ContactInterface::attach_bodies(const std::vector<FeBody>& fe, const std::vector<SphBody>& sph,
+                                     bool master_is_sph, std::size_t master, bool slave_is_sph,
+                                     std::size_t slave) {
+  if (!master_is_sph && !slave_is_sph) {
+    attach_bodies(fe, master, slave);
+    return;
+  }
+  (void)sph;
+  master_index_ = master;
+  slave_index_ = slave;
+  master_sph_ = master_is_sph;
+  slave_sph_ = slave_is_sph;
+  // FE side of a mixed pair: its elements, as above.
+  if (!slave_is_sph) {
+    const FeBody& b = fe[slave];
+    slave_elem_offsets_.assign(1, 0);
+    slave_elem_entries_.clear();
+    for (int g : slave_.nodes) {
+      const std::vector<int> e = elements_of_node(b, g);
+      slave_elem_entries_.insert(slave_elem_entries_.end(), e.begin(), e.end());
+      slave_elem_offsets_.push_back(static_cast<int>(slave_elem_entries_.size()));
+    }
+  }
+  if (!master_is_sph) {
+    const FeBody& b = fe[master];
+    const int npf = master_.nodes_per_face();
+    master_face_element_.assign(master_.faces.size(), -1);
+    for (std::size_t f = 0; f < master_.faces.size(); ++f) {
+      std::vector<int> common = elements_of_node(b, master_.faces[f][0]);
+      for (int k = 1; k < npf; ++k) {
+        const std::vector<int> e = elements_of_node(b, master_.faces[f][k]);
+        std::vector<int> both;
+        std::set_intersection(common.begin(), common.end(), e.begin(), e.end(),
+                              std::back_inserter(both));
+        common = std::move(both);
+      }
+      if (!common.empty()) master_face_element_[f] = common.front();
+    }
+  }
+}
+
 double ContactInterface::scale() const {
   return axisymmetric_ ? 2.0 * std::numbers::pi : 1.0;
 }
@@ -169,6 +210,12 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
 }
 
 double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x) const {
+  // Thesis 2.2.4: SPH-SPH pi R^2 with the mean radius of the two particles;
+  // SPH on an FE face the smaller of the face area and pi R^2 (below).
+  if (master_.kind == DetectionKind::particle_pinball && f >= 0) {
+    const double R = 0.5 * (slave_.node_radius(k) + master_.node_radius(f));
+    return std::numbers::pi * R * R;
+  }
   const double own = slave_node_area(slave_, k, x);
   if (master_.kind == DetectionKind::node_on_segment || f < 0) return own;
   const auto& ids = master_.faces[f];
@@ -206,42 +253,81 @@ SideYield ContactInterface::master_side_yield(const FeBody& master, int f, doubl
   return {st.sigma_y_static, st.sigma_y_static_peak};
 }
 
-double ContactInterface::link_compliance(int k, int f, const std::vector<FeBody>& bodies) const {
+double ContactInterface::link_compliance(int k, int f, const std::vector<FeBody>& bodies,
+                                         const std::vector<SphBody>& sph) const {
   const double A = link_area_[k];
   if (!(A > 0.0)) return 0.0;
-  // P-wave modulus M = K + 4G/3 of a body, Pa.
-  const auto modulus = [](const FeBody& b) { return b.constants.K + 4.0 / 3.0 * b.constants.G; };
+  // h_e / (M A) for one side of thickness h_e (m) and P-wave modulus
+  // M = K + 4G/3 (Pa); 0 for a side without material.
+  const auto side = [A](double h_e, const MaterialConstants& c) {
+    const double M = c.K + 4.0 / 3.0 * c.G;
+    return M > 0.0 && h_e > 0.0 ? h_e / (M * A) : 0.0;
+  };
   double c = 0.0;
-  const FeBody& slave = bodies[slave_index_];
-  double h_sum = 0.0;
-  int n = 0;
-  for (int j = slave_elem_offsets_[k]; j < slave_elem_offsets_[k + 1]; ++j) {
-    const int e = slave_elem_entries_[j];
-    if (!slave.active[e]) continue;
-    h_sum += slave.char_length[e];
-    ++n;
+  // Slave: an SPH particle's spacing, or the mean size of the node's elements.
+  if (slave_sph_) {
+    if (slave_index_ < sph.size())
+      c += side(sph[slave_index_].spacing, sph[slave_index_].constants);
+  } else if (slave_index_ < bodies.size() && !slave_elem_offsets_.empty()) {
+    const FeBody& slave = bodies[slave_index_];
+    double h_sum = 0.0;
+    int n = 0;
+    for (int j = slave_elem_offsets_[k]; j < slave_elem_offsets_[k + 1]; ++j) {
+      const int e = slave_elem_entries_[j];
+      if (!slave.active[e]) continue;
+      h_sum += slave.char_length[e];
+      ++n;
+    }
+    if (n > 0) c += side(h_sum / n, slave.constants);
   }
-  if (n > 0 && modulus(slave) > 0.0) c += (h_sum / n) / (modulus(slave) * A);
-  const FeBody& master = bodies[master_index_];
-  const int e = f >= 0 ? master_face_element_[f] : -1;
-  if (e >= 0 && master.active[e] && modulus(master) > 0.0) {
-    c += master.char_length[e] / (modulus(master) * A);
+  // Master: the SPH particle's spacing, or the size of the face's element.
+  if (master_sph_) {
+    if (master_index_ < sph.size()) {
+      c += side(sph[master_index_].spacing, sph[master_index_].constants);
+    }
+  } else if (master_index_ < bodies.size() && f >= 0 &&
+             static_cast<std::size_t>(f) < master_face_element_.size()) {
+    const FeBody& master = bodies[master_index_];
+    const int e = master_face_element_[f];
+    if (e >= 0 && master.active[e]) c += side(master.char_length[e], master.constants);
   }
   return c;
 }
 
 void ContactInterface::update_links_before_solve(const NodeSet& nodes,
-                                                 const std::vector<FeBody>& bodies) {
+                                                 const std::vector<FeBody>& bodies,
+                                                 const std::vector<SphBody>& sph) {
   const AdhesionParams& ap = *settings_.adhesion;
-  const FeBody& master = bodies[master_index_];
-  const FeBody& slave = bodies[slave_index_];
+  // An SPH side's state is the particle's own (yield, peak, damage).
+  auto particle_side = [&](std::size_t body, int g, double& damage) {
+    const SphBody& b = sph[body];
+    const std::size_t i = static_cast<std::size_t>(g) - b.node_begin;
+    damage = 0.0;
+    if (!b.active[i]) return SideYield{1.0, 1.0};
+    const PointState& st = b.state[i];
+    damage = st.D;
+    return SideYield{st.sigma_y_static, st.sigma_y_static_peak};
+  };
   for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
     const LinkState before = link_state_[k];
     if (before == LinkState::exhausted || before == LinkState::eroded) continue;
     if (before == LinkState::none && !link_touching_[k]) continue;
     double d_slave = 0.0, d_master = 0.0;
-    const SideYield ys = slave_side_yield(slave, static_cast<int>(k), d_slave);
-    const SideYield ym = master_side_yield(master, link_face_[k], d_master);
+    // Sides whose bodies were not attached (unit tests of the detection
+    // alone) never drop and carry no damage.
+    SideYield ys{1.0, 1.0}, ym{1.0, 1.0};
+    if (slave_sph_) {
+      if (slave_index_ < sph.size()) ys = particle_side(slave_index_, slave_.nodes[k], d_slave);
+    } else if (slave_index_ < bodies.size() && !slave_elem_offsets_.empty()) {
+      ys = slave_side_yield(bodies[slave_index_], static_cast<int>(k), d_slave);
+    }
+    if (master_sph_) {
+      if (master_index_ < sph.size() && link_face_[k] >= 0) {
+        ym = particle_side(master_index_, master_.faces[link_face_[k]][0], d_master);
+      }
+    } else if (master_index_ < bodies.size() && !master_face_element_.empty()) {
+      ym = master_side_yield(bodies[master_index_], link_face_[k], d_master);
+    }
     LinkEvents ev;
     ev.touching = link_touching_[k] != 0;
     ev.activation_met = activation_met(ap, ys, ym);
@@ -259,6 +345,12 @@ void ContactInterface::update_links_before_solve(const NodeSet& nodes,
 
 void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
                                      double dt, const std::vector<FeBody>& bodies) {
+  lagrange_step(nodes, mask, dt, bodies, {});
+}
+
+void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
+                                     double dt, const std::vector<FeBody>& bodies,
+                                     const std::vector<SphBody>& sph) {
   if (!(dt > 0.0)) return;
   const bool adhesive = settings_.adhesion.has_value();
   const std::vector<DetectedPair> pairs = detect(nodes);
@@ -266,8 +358,10 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
   stats_.in_contact = 0;
   stats_.links_in_tension = 0;
   if (adhesive) {
-    for (std::size_t i = 0; i < first_pass_pairs_; ++i) link_face_[pairs[i].slave] = pairs[i].face;
-    update_links_before_solve(nodes, bodies);
+    for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+      if (pairs[i].primary) link_face_[pairs[i].slave] = pairs[i].face;
+    }
+    update_links_before_solve(nodes, bodies, sph);
     std::fill(link_touching_.begin(), link_touching_.end(), 0);
   }
   if (!pairs.empty()) {
@@ -282,7 +376,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       const AdhesionParams& ap = *settings_.adhesion;
       for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
         const int k = pairs[i].slave;
-        if (link_state_[k] != LinkState::active) continue;
+        if (!pairs[i].primary || link_state_[k] != LinkState::active) continue;
         const double rate = normal_rate(problem_, i, problem_.velocity);
         const double g_n = pairs[i].geometry.gap - dt * rate;
         problem_.lo[i] = -max_tension(ap, link_area_[k]) * dt;
@@ -291,11 +385,13 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       }
     }
     ContactSolution sol = solve_contact(problem_, settings_.solver);
-    // Work of the links against separation (cohesive_law.hpp): per link, the
-    // opening rate without its own impulse g_free and its inverse mass h give
-    // dW = I (g_free - h I / 2); a link whose budget runs out this step keeps
-    // only the impulse that spends it exactly, and the others are solved again
-    // with that impulse fixed.
+    // Budget charge of the links (cohesive_law.hpp): per link, the opening
+    // rate at the start of the step (link_rate_), the rate without its own
+    // impulse g_free, its inverse mass h and the compliance of both sides
+    // give the work I (g_prev + g_after) / 2 and the stored energy c F^2 / 2;
+    // a link whose budget runs out this step keeps only the impulse that
+    // spends it exactly, and the others are solved again with that impulse
+    // fixed.
     std::vector<std::uint8_t> exhausted(links.size(), 0);
     auto link_step = [&](std::size_t j, const ContactSolution& s) {
       const std::size_t i = links[j];
@@ -303,7 +399,8 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       const double h = normal_inverse_mass(problem_, i);
       const double I = -s.p_n[i];
       const double g_free = normal_rate(problem_, i, s.dv) + h * I - problem_.b_hold[i];
-      const LinkKinematics kin{link_rate_[k], g_free, h, link_compliance(k, pairs[i].face, bodies)};
+      const LinkKinematics kin{link_rate_[k], g_free, h,
+                               link_compliance(k, pairs[i].face, bodies, sph)};
       return cohesive_step(*settings_.adhesion, link_area_[k], link_work_[k], kin, dt, I);
     };
     if (!links.empty()) {
@@ -376,7 +473,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       // link starts the next step from (0 for nodes in no pair).
       std::fill(link_rate_.begin(), link_rate_.end(), 0.0);
       for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
-        link_rate_[pairs[i].slave] = normal_rate(problem_, i, v_new);
+        if (pairs[i].primary) link_rate_[pairs[i].slave] = normal_rate(problem_, i, v_new);
       }
     }
     for (std::size_t i = 0; i < pairs.size(); ++i) {

@@ -38,6 +38,7 @@
 #include "solver/contact/contact_solver.hpp"
 #include "solver/contact/contact_types.hpp"
 #include "solver/fe/fe_body.hpp"
+#include "solver/sph/sph_body.hpp"
 
 namespace splat {
 
@@ -93,11 +94,18 @@ class ContactInterface {
   // Records which elements carry the surfaces (for the adhesion tests on the
   // material state of each side). Call once, with the bodies named above.
   void attach_bodies(const std::vector<FeBody>& bodies, std::size_t master, std::size_t slave);
+  // The same when either side is an SPH body (index into `sph`; the
+  // adhesion tests then read the particle's own state). FE sides index `fe`.
+  void attach_bodies(const std::vector<FeBody>& fe, const std::vector<SphBody>& sph,
+                     bool master_is_sph, std::size_t master, bool slave_is_sph, std::size_t slave);
 
   // Stage 3 (Lagrange): corrects v and x of the nodes in contact.
   // `bodies` are the model's bodies (the adhesion tests read their states).
   void lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask, double dt,
                      const std::vector<FeBody>& bodies);
+  // The same with the model's SPH bodies (needed when a side is SPH).
+  void lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask, double dt,
+                     const std::vector<FeBody>& bodies, const std::vector<SphBody>& sph);
   // Stage 5 (penalty): adds the penalty forces at x_{n+1} to nodes.f.
   void penalty_forces(NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask, double dt);
   // Stage 1, after the velocity update over dt_v: books the work of the
@@ -131,7 +139,8 @@ class ContactInterface {
   double scale() const;
   // Link state changes before the solve (activation, erosion, first touch)
   // from the material state of both sides; sets the areas of new links.
-  void update_links_before_solve(const NodeSet& nodes, const std::vector<FeBody>& bodies);
+  void update_links_before_solve(const NodeSet& nodes, const std::vector<FeBody>& bodies,
+                                 const std::vector<SphBody>& sph);
   // Adhesive area of slave node k over master face f, m^2 (per radian in 2D).
   double adhesive_area(int k, int f, const std::vector<Vec3>& x) const;
   // The yield stresses and damage of each side of slave node k's link.
@@ -140,7 +149,8 @@ class ContactInterface {
   // Compliance along the normal of slave node k's link over master face f,
   // both sides in series: sum of h_e / (M A) (cohesive_law.hpp), m/N (per
   // radian in 2D, like the areas and forces).
-  double link_compliance(int k, int f, const std::vector<FeBody>& bodies) const;
+  double link_compliance(int k, int f, const std::vector<FeBody>& bodies,
+                         const std::vector<SphBody>& sph) const;
 
   std::string master_body_, slave_body_;
   ContactSurface master_, slave_;
@@ -158,7 +168,8 @@ class ContactInterface {
   // (CSR) and the master-body element of each master face.
   std::vector<int> slave_elem_offsets_, slave_elem_entries_;
   std::vector<int> master_face_element_;
-  std::size_t master_index_ = 0, slave_index_ = 0;  // in the model's bodies
+  std::size_t master_index_ = 0, slave_index_ = 0;  // in the model's (FE or SPH) bodies
+  bool master_sph_ = false, slave_sph_ = false;     // the side is an SPH body
   // Adhesion, per slave node (SoA): state, work, area, last master face,
   // whether it carried a compressive force in the last step.
   std::vector<LinkState> link_state_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <unordered_map>
 
 namespace splat {
@@ -36,15 +37,54 @@ ContactSurface make_contact_surface(DetectionKind kind, std::vector<std::array<i
   return s;
 }
 
+ContactSurface make_particle_surface(const std::vector<int>& particles,
+                                     const std::vector<double>& radius) {
+  std::vector<std::size_t> order(particles.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return particles[a] < particles[b]; });
+  std::vector<std::array<int, 4>> faces;
+  std::vector<double> r;
+  for (std::size_t i : order) {
+    faces.push_back({particles[i], -1, -1, -1});
+    r.push_back(radius[i]);
+  }
+  ContactSurface s = make_contact_surface(DetectionKind::particle_pinball, std::move(faces));
+  s.radius = std::move(r);  // nodes ascending = faces ascending (distinct particles)
+  return s;
+}
+
 namespace {
+
+// Pinball geometry of point p against particle x_m of radius R_m.
+PairGeometry project_on_particle(const Vec3& p, const Vec3& xm, double R_m) {
+  PairGeometry g;
+  const Vec3 d = p - xm;
+  const double dist = d.norm();
+  if (!(dist > 0.0)) return g;
+  g.valid = true;
+  g.normal = d / dist;
+  // Any unit vector normal to n, then the third of the triad.
+  const Vec3 a = std::abs(g.normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  g.tangent1 = g.normal.cross(a).normalized();
+  g.tangent2 = g.normal.cross(g.tangent1);
+  g.weights = {1.0, 0.0, 0.0, 0.0};
+  g.gap = dist - R_m;
+  return g;
+}
 
 std::array<Vec3, 4> face_points(const ContactSurface& s, int f, const std::vector<Vec3>& x) {
   const auto& ids = s.faces[f];
+  if (s.kind == DetectionKind::particle_pinball)
+    return {x[ids[0]], x[ids[0]], x[ids[0]], x[ids[0]]};
   if (s.kind == DetectionKind::node_on_segment) return {x[ids[0]], x[ids[1]], x[ids[1]], x[ids[1]]};
   return {x[ids[0]], x[ids[1]], x[ids[2]], x[ids[3]]};
 }
 
 PairGeometry project(const ContactSurface& s, int f, const Vec3& p, const std::vector<Vec3>& x) {
+  if (s.kind == DetectionKind::particle_pinball) {
+    return project_on_particle(p, x[s.faces[f][0]], s.node_radius(f));
+  }
   const auto pts = face_points(s, f, x);
   if (s.kind == DetectionKind::node_on_segment) return project_on_segment(p, pts[0], pts[1]);
   return project_on_quad(p, pts);
@@ -62,31 +102,53 @@ bool better(const DetectedPair& a, const DetectedPair& b) {
   return a.face < b.face;
 }
 
-// Tests slave node k against face f and keeps the better pair in `best`.
-void consider(const ContactSurface& master, int f, int k, const Vec3& p, const std::vector<Vec3>& x,
-              const SearchSettings& st, double size, DetectedPair& best, bool& found) {
+// Tests slave node k against face f and keeps the better pair in `best`, or,
+// with `all`, appends every pair in range to it.
+void consider(const ContactSurface& master, int f, int k, const Vec3& p, double r_slave,
+              const std::vector<Vec3>& x, const SearchSettings& st, double size, DetectedPair& best,
+              bool& found, std::vector<DetectedPair>* all) {
   DetectedPair c;
   c.slave = k;
   c.face = f;
   c.geometry = project(master, f, p, x);
   if (!c.geometry.valid) return;
+  c.geometry.gap -= r_slave;
   if (c.geometry.distance_outside > st.outside_tolerance) return;
   if (c.geometry.gap > st.search_margin * size || c.geometry.gap < -st.capture_depth * size) return;
+  if (all) {
+    all->push_back(c);
+    return;
+  }
   if (!found || better(c, best)) {
     best = c;
     found = true;
   }
 }
 
+// Pinball master: all candidates of one slave, smallest gap (then face) first.
+void append_all(std::vector<DetectedPair>& all, std::vector<DetectedPair>& out) {
+  std::sort(all.begin(), all.end(), [](const DetectedPair& a, const DetectedPair& b) {
+    if (a.geometry.gap != b.geometry.gap) return a.geometry.gap < b.geometry.gap;
+    return a.face < b.face;
+  });
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    all[i].primary = i == 0;
+    out.push_back(all[i]);
+  }
+  all.clear();
+}
+
 }  // namespace
 
 double face_size(const ContactSurface& s, int f, const std::vector<Vec3>& x) {
+  if (s.kind == DetectionKind::particle_pinball) return 2.0 * s.node_radius(f);
   const auto pts = face_points(s, f, x);
   if (s.kind == DetectionKind::node_on_segment) return (pts[1] - pts[0]).norm();
   return std::sqrt(quad_area(pts));
 }
 
 double slave_node_area(const ContactSurface& s, int k, const std::vector<Vec3>& x) {
+  if (!s.radius.empty()) return std::numbers::pi * s.radius[k] * s.radius[k];
   double area = 0.0;
   for (int e = s.node_face_offsets[k]; e < s.node_face_offsets[k + 1]; ++e) {
     const auto pts = face_points(s, s.node_face_entries[e], x);
@@ -108,13 +170,18 @@ std::vector<DetectedPair> find_pairs_all_pairs(const ContactSurface& master,
   std::vector<double> sizes(master.faces.size());
   for (std::size_t f = 0; f < sizes.size(); ++f)
     sizes[f] = face_size(master, static_cast<int>(f), x);
+  const bool pinball = master.kind == DetectionKind::particle_pinball;
+  std::vector<DetectedPair> all;
   for (std::size_t k = 0; k < slave.nodes.size(); ++k) {
     const Vec3& p = x[slave.nodes[k]];
     DetectedPair best;
     bool found = false;
     for (std::size_t f = 0; f < master.faces.size(); ++f) {
-      consider(master, static_cast<int>(f), static_cast<int>(k), p, x, st, sizes[f], best, found);
+      consider(master, static_cast<int>(f), static_cast<int>(k), p,
+               slave.node_radius(static_cast<int>(k)), x, st, sizes[f], best, found,
+               pinball ? &all : nullptr);
     }
+    if (pinball) append_all(all, out);
     if (found) out.push_back(best);
   }
   return out;
@@ -127,6 +194,9 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
   const std::size_t nf = master.faces.size();
   if (nf == 0 || slave.nodes.empty()) return out;
   const int npf = master.nodes_per_face();
+  const double pinball = master.kind == DetectionKind::particle_pinball ? 1.0 : 0.0;
+  const double slave_reach =
+      slave.radius.empty() ? 0.0 : *std::max_element(slave.radius.begin(), slave.radius.end());
   // Face bounding boxes grown by the capture range (the projection tolerance
   // included), so a slave node within range of a face lies inside its box.
   std::vector<Vec3> lo(nf), hi(nf);
@@ -141,8 +211,10 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
       a = a.cwiseMin(x[master.faces[f][k]]);
       b = b.cwiseMax(x[master.faces[f][k]]);
     }
-    // The projection tolerance is in local units: a fraction of the largest edge.
-    const double grow = reach * std::max(sizes[f], (b - a).maxCoeff());
+    // The projection tolerance is in local units: a fraction of the largest
+    // edge; a master pinball reaches its radius further, a slave pinball its own.
+    const double grow =
+        reach * std::max(sizes[f], (b - a).maxCoeff()) + 0.5 * sizes[f] * pinball + slave_reach;
     lo[f] = a - Vec3::Constant(grow);
     hi[f] = b + Vec3::Constant(grow);
     cell = std::max(cell, (hi[f] - lo[f]).maxCoeff());
@@ -164,6 +236,7 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
       for (std::int64_t j = j0; j <= j1; ++j)
         for (std::int64_t k = k0; k <= k1; ++k) grid[key(i, j, k)].push_back(static_cast<int>(f));
   }
+  std::vector<DetectedPair> all;
   for (std::size_t s = 0; s < slave.nodes.size(); ++s) {
     const Vec3& p = x[slave.nodes[s]];
     const auto it = grid.find(key(cell_of(p.x()), cell_of(p.y()), planar ? 0 : cell_of(p.z())));
@@ -172,8 +245,10 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
     bool found = false;
     for (int f : it->second) {
       if ((p.array() < lo[f].array()).any() || (p.array() > hi[f].array()).any()) continue;
-      consider(master, f, static_cast<int>(s), p, x, st, sizes[f], best, found);
+      consider(master, f, static_cast<int>(s), p, slave.node_radius(static_cast<int>(s)), x, st,
+               sizes[f], best, found, pinball > 0.0 ? &all : nullptr);
     }
+    if (pinball > 0.0) append_all(all, out);
     if (found) out.push_back(best);
   }
   return out;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "solver/core/sph_model.hpp"
 #include "solver/fe/bulk_viscosity.hpp"
 #include "solver/input/schema.hpp"
 #include "solver/mesh/generators.hpp"
@@ -164,6 +165,16 @@ void add_spin(NodeSet& nodes, std::size_t first, const Vec3& w) {
 
 }  // namespace
 
+std::size_t body_node_begin(const Model& model, std::size_t scene_index) {
+  const BodyRef r = model.body_refs[scene_index];
+  return r.sph ? model.sph_bodies[r.index].node_begin : model.bodies[r.index].node_begin;
+}
+
+std::size_t body_node_end(const Model& model, std::size_t scene_index) {
+  const BodyRef r = model.body_refs[scene_index];
+  return r.sph ? model.sph_bodies[r.index].node_end : model.bodies[r.index].node_end;
+}
+
 Vec3 to_user_frame(const Model& model, const Vec3& v) {
   return model.axisymmetric ? Vec3(v.x(), 0.0, v.y()) : v;
 }
@@ -189,13 +200,21 @@ Model build_model(const Scene& scene) {
   for (std::size_t bi = 0; bi < scene.bodies.size(); ++bi) {
     const BodySpec& b = scene.bodies[bi];
     const bool axi = b.discretization == Discretization::fe_axisym;
-    if (b.discretization == Discretization::sph) {
-      fail(body_pointer(bi) + "/discretization/type", "sph bodies are not available yet");
-    }
     if (axi != model.axisymmetric) {
       fail(body_pointer(bi) + "/discretization/type",
            "all bodies of a scene must be axisymmetric, or all 3D");
     }
+    if (b.discretization == Discretization::sph) {
+      const std::size_t first = model.nodes.size();
+      model.body_refs.push_back({true, model.sph_bodies.size()});
+      model.sph_bodies.push_back(build_sph_body(scene, bi, model.nodes));
+      add_spin(model.nodes, first, b.angular_velocity);
+      body_faces.emplace_back();
+      body_face_tags.emplace_back();
+      face_counts.push_back(0);
+      continue;
+    }
+    model.body_refs.push_back({false, model.bodies.size()});
     // make_fe_body takes the velocity in scene coordinates (axisymmetric: the
     // z component moves along the axis).
     const Vec3& velocity = b.velocity;
@@ -257,8 +276,21 @@ Model build_model(const Scene& scene) {
     const BoundarySpec& bc = scene.boundaries[ci];
     const std::string ptr = "/boundary_conditions/" + std::to_string(ci);
     const std::size_t bi = body_index(bc.body, ptr + "/body");
-    const FeBody& body = model.bodies[bi];
+    const BodyRef ref = model.body_refs[bi];
+    if (ref.sph) {
+      const SphBody& sb = model.sph_bodies[ref.index];
+      if (bc.type == BoundaryType::absorbing) {
+        model.sph_absorbing.push_back(
+            build_sph_absorbing(scene.bodies[bi], sb, model.nodes, bc.on));
+        continue;
+      }
+      // Symmetry planes are mirrored ghosts (sph_symmetry_planes): no constraint.
+      if (bc.type == BoundaryType::symmetry) continue;
+    }
+    const std::size_t node_begin = body_node_begin(model, bi);
+    const std::size_t node_end = body_node_end(model, bi);
     if (bc.type == BoundaryType::absorbing) {
+      const FeBody& body = model.bodies[ref.index];
       const Material& m = body.material;
       const double rho_cp = m.density * body.constants.wave_speed;
       const double rho_cs = std::sqrt(m.density * body.constants.G);
@@ -293,7 +325,7 @@ Model build_model(const Scene& scene) {
       case BoundaryType::absorbing:
         break;
     }
-    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+    for (std::size_t i = node_begin; i < node_end; ++i) {
       if (!(model.nodes.boundary[i] & bc.on)) continue;
       model.constraint_mask[i] |= mask;
       for (int c = 0; c < 3; ++c) {
@@ -321,6 +353,25 @@ Model build_model(const Scene& scene) {
     }
     return make_contact_surface(kind, std::move(faces));
   };
+  // SPH bodies: the particles of the boundary layers (any face bit but the
+  // excluded symmetry planes) as pinballs of radius half the spacing (the
+  // thesis's "SPH radius": 1.25 um at 2.5 um spacing, 740 particles in a
+  // 12.5 um ball).
+  auto particle_surface_of = [&](std::size_t b) {
+    const SphBody& body = model.sph_bodies[model.body_refs[b].index];
+    std::vector<int> ids;
+    std::vector<double> radius;
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      if (!(model.nodes.boundary[i] & ~excluded[b])) continue;
+      ids.push_back(static_cast<int>(i));
+      radius.push_back(0.5 * body.spacing);
+    }
+    return make_particle_surface(ids, radius);
+  };
+  auto bulk_modulus_of = [&](std::size_t b) {
+    const BodyRef r = model.body_refs[b];
+    return r.sph ? model.sph_bodies[r.index].constants.K : model.bodies[r.index].constants.K;
+  };
   for (std::size_t ci = 0; ci < scene.interactions.size(); ++ci) {
     const InteractionSpec& it = scene.interactions[ci];
     if (it.type != InteractionType::contact) continue;
@@ -328,13 +379,22 @@ Model build_model(const Scene& scene) {
     const std::size_t mb = body_index(it.master, ptr + "/master");
     const std::size_t sb = body_index(it.slave, ptr + "/slave");
     if (mb == sb) fail(ptr + "/slave", "must differ from master");
+    const bool master_sph = model.body_refs[mb].sph, slave_sph = model.body_refs[sb].sph;
+    if (master_sph && !slave_sph) {
+      fail(ptr + "/master",
+           "an sph master needs an sph slave; make the sph body the slave of "
+           "the FE body (SPH particles on FE faces)");
+    }
+    if ((master_sph || slave_sph) && it.two_pass) {
+      fail(ptr + "/two_pass", "two-pass contact is for FE pairs only");
+    }
     ContactSettings cs;
     cs.method = it.method;
     cs.friction = it.friction;
     cs.solver.kind = it.solver;
     cs.two_pass = it.two_pass;
     cs.adhesion = it.adhesion;
-    ContactSurface master = surface_of(mb);
+    ContactSurface master = master_sph ? particle_surface_of(mb) : surface_of(mb);
     if (it.method == ContactMethod::penalty) {
       cs.penalty_stiffness = it.penalty_stiffness;
       if (!(cs.penalty_stiffness > 0.0)) {
@@ -344,14 +404,17 @@ Model build_model(const Scene& scene) {
         for (std::size_t f = 0; f < master.faces.size(); ++f) {
           h = std::min(h, face_size(master, static_cast<int>(f), model.nodes.x0));
         }
-        const double K = std::min(model.bodies[mb].constants.K, model.bodies[sb].constants.K);
+        const double K = std::min(bulk_modulus_of(mb), bulk_modulus_of(sb));
         if (!std::isfinite(h) || !(h > 0.0)) fail(ptr + "/master", "the body has no contact faces");
         cs.penalty_stiffness = 0.1 * K / h;
       }
     }
-    model.contacts.emplace_back(it.master, it.slave, std::move(master), surface_of(sb), cs,
+    model.contacts.emplace_back(it.master, it.slave, std::move(master),
+                                slave_sph ? particle_surface_of(sb) : surface_of(sb), cs,
                                 model.axisymmetric, n);
-    model.contacts.back().attach_bodies(model.bodies, mb, sb);
+    model.contacts.back().attach_bodies(model.bodies, model.sph_bodies, master_sph,
+                                        model.body_refs[mb].index, slave_sph,
+                                        model.body_refs[sb].index);
   }
 
   for (std::size_t wi = 0; wi < scene.interactions.size(); ++wi) {
@@ -367,14 +430,14 @@ Model build_model(const Scene& scene) {
     wall.normal.normalize();
     std::vector<std::size_t> targets;
     if (it.bodies.empty()) {
-      for (std::size_t b = 0; b < model.bodies.size(); ++b) targets.push_back(b);
+      for (std::size_t b = 0; b < scene.bodies.size(); ++b) targets.push_back(b);
     } else {
       for (std::size_t k = 0; k < it.bodies.size(); ++k) {
         targets.push_back(body_index(it.bodies[k], ptr + "/bodies/" + std::to_string(k)));
       }
     }
     for (std::size_t b : targets) {
-      for (std::size_t i = model.bodies[b].node_begin; i < model.bodies[b].node_end; ++i) {
+      for (std::size_t i = body_node_begin(model, b); i < body_node_end(model, b); ++i) {
         wall.nodes.push_back(static_cast<int>(i));
       }
     }
@@ -410,6 +473,9 @@ double initial_time_step_bound(const Model& model) {
   for (const FeBody& b : model.bodies) {
     dt = std::min(dt, shortest_edge(b, model.nodes) / b.constants.wave_speed);
   }
+  // SPH: the bound of sph_body.hpp at rest, nearest-neighbour distance (the
+  // spacing) over the P-wave speed.
+  for (const SphBody& b : model.sph_bodies) dt = std::min(dt, b.spacing / b.constants.wave_speed);
   return dt;
 }
 

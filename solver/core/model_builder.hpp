@@ -10,6 +10,8 @@
 #include "solver/contact/contact_interface.hpp"
 #include "solver/fe/fe_body.hpp"
 #include "solver/scene/scene.hpp"
+#include "solver/sph/sph_body.hpp"
+#include "solver/sph/sph_boundary.hpp"
 
 namespace splat {
 
@@ -33,11 +35,20 @@ struct BodyMeshInfo {
   std::vector<int> connectivity;  // flattened, local node ids, 4 or 8 per cell
 };
 
+// Where scene body k lives: model.bodies[index] (FE) or model.sph_bodies[index].
+struct BodyRef {
+  bool sph = false;
+  std::size_t index = 0;
+};
+
 struct Model {
   bool axisymmetric = false;
   NodeSet nodes;
-  std::vector<FeBody> bodies;
-  std::vector<BodyMeshInfo> meshes;           // one per body
+  std::vector<FeBody> bodies;                 // the FE bodies, scene order
+  std::vector<SphBody> sph_bodies;            // the SPH bodies, scene order
+  std::vector<BodyRef> body_refs;             // one per scene body
+  std::vector<SphAbsorbing> sph_absorbing;    // absorbing layers of SPH bodies
+  std::vector<BodyMeshInfo> meshes;           // one per FE body
   std::vector<std::uint8_t> constraint_mask;  // per node: bit c = component c prescribed
   std::vector<Vec3> constraint_value;         // per node: prescribed velocity, m/s
   std::vector<RigidWall> walls;
@@ -68,6 +79,9 @@ double initial_closing_speed(const Model& model);
 // for dv = 0. Uses L_c of the last force evaluation (the initial edge length
 // before the first).
 double closing_speed_time_step_bound(const Model& model, double dv);
+// Node (particle) range [begin, end) of scene body `scene_index`.
+std::size_t body_node_begin(const Model& model, std::size_t scene_index);
+std::size_t body_node_end(const Model& model, std::size_t scene_index);
 
 // Internal frame -> user frame: axisymmetric (r, z, 0) -> (r, 0, z).
 Vec3 to_user_frame(const Model& model, const Vec3& v);

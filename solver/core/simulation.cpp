@@ -36,6 +36,9 @@ const NodeSet& Simulation::nodes() const {
 const std::vector<FeBody>& Simulation::bodies() const {
   return impl_->model.bodies;
 }
+const std::vector<SphBody>& Simulation::sph_bodies() const {
+  return impl_->model.sph_bodies;
+}
 bool Simulation::axisymmetric() const {
   return impl_->model.axisymmetric;
 }
@@ -47,6 +50,7 @@ void Simulation::Impl::update_velocities(bool first) {
   NodeSet& n = model.nodes;
   const double dt_v = first ? 0.5 * dt_half : 0.5 * (dt_half_prev + dt_half);
   const std::size_t count = n.size();
+  const Vec3 sph_power = sph_dissipative_power();
   double ext_work = 0.0, wall_work = 0.0;
   for (std::size_t i = 0; i < count; ++i) {
     const double m = n.mass[i];
@@ -77,6 +81,7 @@ void Simulation::Impl::update_velocities(bool first) {
   energy.external_work += ext_work * scale();
   energy.wall_work += wall_work * scale();
   for (ContactInterface& c : model.contacts) c.book_penalty_work(n, dt_v);
+  book_sph_dissipation(sph_power, dt_v);
 }
 
 // Stage 2.
@@ -91,7 +96,7 @@ void Simulation::Impl::predict_positions() {
 void Simulation::Impl::contact_constraints() {
   for (ContactInterface& c : model.contacts) {
     if (c.settings().method == ContactMethod::lagrange) {
-      c.lagrange_step(model.nodes, model.constraint_mask, dt_half, model.bodies);
+      c.lagrange_step(model.nodes, model.constraint_mask, dt_half, model.bodies, model.sph_bodies);
     }
   }
 }
@@ -125,7 +130,7 @@ bool Simulation::Impl::internal_forces(RunSummary& s) {
       return false;
     }
   }
-  return true;
+  return sph_internal_forces_all(s);
 }
 
 // Stage 5: penalty contact forces, then viscous absorbing boundaries,
@@ -170,6 +175,7 @@ void Simulation::Impl::boundary_forces() {
     }
   }
   energy.absorbed -= power * dt_half * scale();
+  sph_boundary_forces();
 }
 
 void Simulation::Impl::compute_energies() {
@@ -183,6 +189,7 @@ void Simulation::Impl::compute_energies() {
       if (b.active[e]) plastic += b.volume0[e] * b.state[e].plastic_work;
     }
   }
+  sph_energies(internal, plastic);
   energy.kinetic = kinetic * scale();
   energy.internal = internal * scale();
   energy.plastic_work = plastic * scale();
@@ -398,6 +405,7 @@ void Simulation::Impl::fill_summary(RunSummary& s) const {
     }
     s.bodies.push_back(bs);
   }
+  sph_summaries(s);
   s.interfaces.clear();
   for (const ContactInterface& c : model.contacts) {
     const ContactStats& st = c.stats();

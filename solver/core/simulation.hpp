@@ -24,6 +24,7 @@
 #include "solver/core/run_summary.hpp"
 #include "solver/fe/fe_body.hpp"
 #include "solver/scene/scene.hpp"
+#include "solver/sph/sph_body.hpp"
 
 namespace splat {
 
@@ -46,7 +47,8 @@ class Simulation {
   RunSummary run();
 
   const NodeSet& nodes() const;
-  const std::vector<FeBody>& bodies() const;
+  const std::vector<FeBody>& bodies() const;       // FE bodies
+  const std::vector<SphBody>& sph_bodies() const;  // SPH bodies
   bool axisymmetric() const;
 
  private:

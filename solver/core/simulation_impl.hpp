@@ -56,6 +56,13 @@ struct Simulation::Impl {
   void write_history();
   void write_snapshot(bool final_state = false);
   void fill_summary(RunSummary& s) const;
+  // SPH bodies (simulation_sph.cpp).
+  bool sph_internal_forces_all(RunSummary& s);
+  void sph_boundary_forces();
+  Vec3 sph_dissipative_power() const;  // (viscosity, hourglass) -sum f . v, W
+  void book_sph_dissipation(const Vec3& power_before, double dt_v);
+  void sph_energies(double& internal, double& plastic) const;
+  void sph_summaries(RunSummary& s) const;
 };
 
 }  // namespace splat

@@ -21,6 +21,9 @@ void Simulation::Impl::open_output() {
     topo.push_back({body.name, body.kind == ElementKind::hex8 ? CellKind::hex8 : CellKind::quad4,
                     dim, model.meshes[b].connectivity, body.node_end - body.node_begin});
   }
+  for (const SphBody& body : model.sph_bodies) {
+    topo.push_back({body.name, CellKind::point, dim, {}, body.size()});
+  }
   std::vector<std::pair<std::string, std::string>> columns = {{"time", "s"},
                                                               {"dt", "s"},
                                                               {"kinetic", "J"},
@@ -39,6 +42,11 @@ void Simulation::Impl::open_output() {
   for (const FeBody& body : model.bodies) {
     for (const char* c : {"_vx", "_vy", "_vz"}) columns.emplace_back(body.name + c, "m/s");
     columns.emplace_back(body.name + "_kinetic", "J");
+  }
+  for (const SphBody& body : model.sph_bodies) {
+    for (const char* c : {"_vx", "_vy", "_vz"}) columns.emplace_back(body.name + c, "m/s");
+    columns.emplace_back(body.name + "_kinetic", "J");
+    columns.emplace_back(body.name + "_reference_updates", "-");
   }
   for (std::size_t c = 0; c < model.contacts.size(); ++c) {
     const std::string prefix = "contact" + std::to_string(c) + "_";
@@ -90,6 +98,18 @@ void Simulation::Impl::write_history() {
     const Vec3 vc = centroid_velocity(model, momentum, mass);
     row.insert(row.end(), {vc.x(), vc.y(), vc.z(), kinetic * scale()});
   }
+  for (const SphBody& body : model.sph_bodies) {
+    Vec3 momentum = Vec3::Zero();
+    double mass = 0.0, kinetic = 0.0;
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      mass += n.mass[i];
+      momentum += n.mass[i] * n.v[i];
+      kinetic += 0.5 * n.mass[i] * n.v[i].squaredNorm();
+    }
+    const Vec3 vc = centroid_velocity(model, momentum, mass);
+    row.insert(row.end(),
+               {vc.x(), vc.y(), vc.z(), kinetic, static_cast<double>(body.reference_updates)});
+  }
   for (const ContactInterface& c : model.contacts) {
     const ContactStats& st = c.stats();
     row.insert(row.end(), {static_cast<double>(st.in_contact), st.work,
@@ -120,7 +140,7 @@ void Simulation::Impl::write_snapshot(bool final_state) {
     std::vector<double> coords, velocity, eps_p, temperature, damage, yield, mises, pressure;
     std::vector<int> active;
   };
-  std::vector<Arrays> arrays(model.bodies.size());
+  std::vector<Arrays> arrays(model.bodies.size() + model.sph_bodies.size());
   std::vector<BodySnapshot> snaps;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const FeBody& body = model.bodies[b];
@@ -140,6 +160,36 @@ void Simulation::Impl::write_snapshot(bool final_state) {
       a.mises.push_back(von_mises(st.s));
       a.pressure.push_back(st.p);
       a.active.push_back(body.active[e]);
+    }
+    BodySnapshot s;
+    s.body = body.name;
+    s.coordinates = a.coords;
+    s.fields = {
+        {"velocity", "m/s", false, dim, a.velocity},  {"plastic_strain", "-", true, 1, a.eps_p},
+        {"temperature", "K", true, 1, a.temperature}, {"damage", "-", true, 1, a.damage},
+        {"yield_stress", "Pa", true, 1, a.yield},     {"von_mises", "Pa", true, 1, a.mises},
+        {"pressure", "Pa", true, 1, a.pressure}};
+    s.active_cells = a.active;
+    snaps.push_back(std::move(s));
+  }
+  // SPH bodies: one point cell per particle, fields on the cells.
+  for (std::size_t k = 0; k < model.sph_bodies.size(); ++k) {
+    const SphBody& body = model.sph_bodies[k];
+    Arrays& a = arrays[model.bodies.size() + k];
+    for (std::size_t p = 0; p < body.size(); ++p) {
+      const std::size_t i = body.node_begin + p;
+      for (int c = 0; c < dim; ++c) {
+        a.coords.push_back(n.x[i][c]);
+        a.velocity.push_back(n.v[i][c]);
+      }
+      const PointState& st = body.state[p];
+      a.eps_p.push_back(st.eps_p);
+      a.temperature.push_back(st.T);
+      a.damage.push_back(st.D);
+      a.yield.push_back(st.sigma_y);
+      a.mises.push_back(von_mises(st.s));
+      a.pressure.push_back(st.p);
+      a.active.push_back(body.active[p]);
     }
     BodySnapshot s;
     s.body = body.name;

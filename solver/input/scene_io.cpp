@@ -321,8 +321,25 @@ void parse_discretization(const json& d, BodySpec& b, const std::string& p, Prob
   const std::string dp = at(p, "discretization");
   b.discretization = from_name(discretization_names, d.at("type").get<std::string>());
   const bool axisym = is_axisymmetric(b.discretization);
-  if (b.discretization == Discretization::sph) {
-    problems.add(at(dp, "type"), "sph bodies are not available yet");
+  if (const auto sp = d.find("sph"); sp != d.end()) {
+    if (b.discretization != Discretization::sph) {
+      problems.add(at(dp, "sph"), "only sph bodies take sph settings");
+    }
+    SphSettings& ss = b.sph;
+    ss.kernel = value_or(*sp, "kernel", std::string("cubic-spline")) == "wendland-c2"
+                    ? SphKernel::wendland_c2
+                    : SphKernel::cubic_spline;
+    ss.h_over_spacing = value_or(*sp, "h_over_spacing", ss.h_over_spacing);
+    ss.visc_linear = value_or(*sp, "viscosity_linear", ss.visc_linear);
+    ss.visc_quadratic = value_or(*sp, "viscosity_quadratic", ss.visc_quadratic);
+    ss.hourglass_coefficient = value_or(*sp, "hourglass_coefficient", ss.hourglass_coefficient);
+    ss.update_threshold = value_or(*sp, "update_threshold", ss.update_threshold);
+    ss.max_h_growth = value_or(*sp, "max_h_growth", ss.max_h_growth);
+    ss.deactivate_failed = value_or(*sp, "deactivate_failed", ss.deactivate_failed);
+    b.lattice =
+        value_or(*sp, "lattice", std::string("hcp")) == "cubic" ? Lattice::cubic : Lattice::hcp;
+    b.sph_jitter = value_or(*sp, "jitter", 0.0);
+    b.sph_boundary_layers = value_or(*sp, "boundary_layers", 3);
   }
   const bool has_count = d.contains("elements_across");
   const bool has_size = d.contains("element_size");
@@ -335,8 +352,8 @@ void parse_discretization(const json& d, BodySpec& b, const std::string& p, Prob
   b.element_size = has_count ? 0.0 : value_or(d, "element_size", 0.0);
   if (const auto s = d.find("sector"); s != d.end()) {
     b.sector = from_name(sector_names, s->get<std::string>());
-    if (b.discretization != Discretization::fe_hex) {
-      problems.add(at(dp, "sector"), "only fe-hex bodies have a sector");
+    if (b.discretization == Discretization::fe_axisym) {
+      problems.add(at(dp, "sector"), "only fe-hex and sph bodies have a sector");
     } else if (b.sector != SectorKind::full && b.geometry.type == GeometryType::box) {
       problems.add(at(dp, "sector"),
                    "only spheres and cylinders have sectors; set the box's extent");
@@ -420,7 +437,21 @@ json body_to_json(const BodySpec& b) {
   } else {
     d["elements_across"] = b.elements_across;
   }
-  if (b.discretization == Discretization::fe_hex) d["sector"] = name_of(sector_names, b.sector);
+  if (b.discretization != Discretization::fe_axisym) d["sector"] = name_of(sector_names, b.sector);
+  if (b.discretization == Discretization::sph) {
+    const SphSettings& ss = b.sph;
+    d["sph"] = {{"lattice", b.lattice == Lattice::cubic ? "cubic" : "hcp"},
+                {"kernel", ss.kernel == SphKernel::wendland_c2 ? "wendland-c2" : "cubic-spline"},
+                {"h_over_spacing", ss.h_over_spacing},
+                {"viscosity_linear", ss.visc_linear},
+                {"viscosity_quadratic", ss.visc_quadratic},
+                {"hourglass_coefficient", ss.hourglass_coefficient},
+                {"update_threshold", ss.update_threshold},
+                {"max_h_growth", ss.max_h_growth},
+                {"deactivate_failed", ss.deactivate_failed},
+                {"jitter", b.sph_jitter},
+                {"boundary_layers", b.sph_boundary_layers}};
+  }
   if (b.grading.enabled) {
     d["grading"] = {{"focus", to_json_vec(b.grading.focus)}, {"ratio", b.grading.ratio}};
   }

@@ -13,6 +13,8 @@
 #include "solver/common/types.hpp"
 #include "solver/contact/contact_types.hpp"
 #include "solver/material/material.hpp"
+#include "solver/sph/sph_body.hpp"
+#include "solver/sph/sph_particles.hpp"
 
 namespace splat {
 
@@ -67,6 +69,12 @@ struct BodySpec {
   bool erosion = false;  // remove elements at D_max, on inversion, or below min_time_step
   double erosion_min_time_step = 0.0;  // s; 0 = off
   bool erosion_on_damage = true;       // also erode at the damage cap D_max
+  // sph bodies only: the particle spacing is element_size, or the
+  // characteristic length over elements_across.
+  SphSettings sph;                 // kernel, viscosity, hourglass, reference update
+  Lattice lattice = Lattice::hcp;  // particle lattice
+  double sph_jitter = 0.0;         // random displacement, fraction of the spacing, -
+  int sph_boundary_layers = 3;     // particle layers tagged per face, in spacings, -
 };
 
 enum class BoundaryType { fixed, symmetry, velocity, absorbing };

@@ -99,7 +99,6 @@ void sph_build_reference(SphBody& b) {
   const std::size_t np = b.pairs.num_pairs();
   std::vector<int> reverse(np, -1);  // index of the reverse pair (j, i, op)
   b.pair_grad.assign(np, Vec3::Zero());
-  b.pair_dX.assign(np, Vec3::Zero());
   b.pair_w.assign(np, 0.0f);
   b.pair_dw.assign(np, 0.0f);
   b.null_projector.assign(n, Mat3::Zero());
@@ -117,7 +116,6 @@ void sph_build_reference(SphBody& b) {
       const Vec3 dX = mirror_point(b.planes, op, b.X[j]) - b.X[i];
       const double r0 = dX.norm();
       const KernelValue kv = kernel(b.settings.kernel, r0, 0.5 * (b.h[i] + b.h[j]));
-      b.pair_dX[kk] = dX;
       b.pair_w[kk] = static_cast<float>(b.volume_ref[j] * kv.w);
       b.pair_dw[kk] = static_cast<float>(kv.dw_dr);
       b.pair_grad[kk] = (-kv.dw_dr / r0) * dX;  // uncorrected for now
@@ -168,11 +166,12 @@ void sph_build_reference(SphBody& b) {
           b.volume_ref[static_cast<std::size_t>(b.pairs.j[kk])] * (B * b.pair_grad[kk]);
     }
   }
+  for (std::size_t k = 0; k < np; ++k) {
+    if (reverse[k] < 0) throw std::logic_error("SPH reference: neighbour lists are not symmetric");
+  }
   b.pair_grad_rev.resize(np);
   for (std::size_t k = 0; k < np; ++k) {
-    const int r = reverse[k];
-    if (r < 0) throw std::logic_error("SPH reference: neighbour lists are not symmetric");
-    b.pair_grad_rev[k] = b.pair_grad[static_cast<std::size_t>(r)];
+    b.pair_grad_rev[k] = b.pair_grad[static_cast<std::size_t>(reverse[k])];
   }
   b.F.assign(n, Mat3::Identity());
   b.Fdot.assign(n, Mat3::Zero());
@@ -337,6 +336,8 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   // hourglass modulus ((1 - D) E, or the flow stress once plastic).
   b.rho.resize(n);
   b.E_hg.resize(n);
+  b.f_visc.assign(n, Vec3::Zero());
+  b.f_hg.assign(n, Vec3::Zero());
   for_blocks(n, blocks, [&](std::size_t i, BlockSums&) {
     const PointState& st = b.state[i];
     b.rho[i] = mat.density / (b.J_ref[i] * std::max(b.F[i].determinant(), 1e-12));
@@ -349,6 +350,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     }
     const std::size_t gi = b.node_begin + i;
     const Vec3 xi = nodes.x[gi], vi = nodes.v[gi];
+    const Vec3 Xi = b.X[i];
     const double mi = nodes.mass[gi];
     const double Vi = b.volume_ref[i];
     const double rho_i = b.rho[i];
@@ -363,11 +365,12 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       const std::size_t kk = static_cast<std::size_t>(k);
       const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
       const std::size_t gj = b.node_begin + j;
-      const Vec3& dX = b.pair_dX[kk];
+      const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
+      // op(X_j) - X_i, recomputed (storing it cost 24 B per pair).
+      const Vec3 dX = (op != 0 ? mirror_point(b.planes, op, b.X[j]) : b.X[j]) - Xi;
       Vec3 pj = b.VP[j] * b.pair_grad_rev[kk];
       Vec3 xj = nodes.x[gj], vj = nodes.v[gj];
       Vec3 Fj_dX;  // (S F_j S) dX = S F_j (S dX)
-      const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
       if (op != 0) {
         pj = mirror_vector(b.planes, op, pj);
         xj = mirror_point(b.planes, op, xj);
@@ -409,6 +412,8 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       }
     }
     nodes.f[gi] += f_stress + f_visc + f_hg;
+    b.f_visc[i] = f_visc;
+    b.f_hg[i] = f_hg;
     s.viscosity_power -= f_visc.dot(vi);
     s.hourglass_power -= f_hg.dot(vi);
     // A particle without active neighbours keeps the bound of its spacing.

@@ -115,7 +115,6 @@ struct SphBody {
   NeighbourList pairs;               // reference neighbours (local indices)
   std::vector<Vec3> pair_grad;       // V_j gc_ij (corrected gradient times volume), 1/m
   std::vector<Vec3> pair_grad_rev;   // V_i gc_ji of the reverse pair (a copy, in order), 1/m
-  std::vector<Vec3> pair_dX;         // op(X_j) - X_i, m
   std::vector<float> pair_w;         // V_j W(r0, h_ij), - (float: read by the
   std::vector<float> pair_dw;        //   stabilising terms only), W'(r0, h_ij), 1/m^4
   std::vector<Mat3> null_projector;  // I - C^+ C (zero unless C_i is singular)
@@ -131,6 +130,8 @@ struct SphBody {
   std::vector<double> rho;           // current density, kg/m^3
   std::vector<double> E_hg;          // hourglass modulus, Pa
   std::vector<std::uint8_t> active;  // 0 once deactivated
+  std::vector<Vec3> f_visc;          // artificial-viscosity force of the last call, N
+  std::vector<Vec3> f_hg;            // hourglass force of the last call, N
 
   std::size_t size() const { return node_end - node_begin; }
 };

@@ -346,10 +346,40 @@ TEST(SceneIo, mixed_dimensions) {
   expect_violation(doc, "/bodies/1/discretization/type", "cannot be mixed");
 }
 
-TEST(SceneIo, sph_not_available_yet) {
+TEST(SceneIo, sph_body_settings_round_trip) {
   json doc = hex_scene();
-  doc["bodies"][0]["discretization"] = {{"type", "sph"}, {"elements_across", 8}};
-  expect_violation(doc, "/bodies/0/discretization/type", "sph bodies are not available yet");
+  doc["bodies"][0]["discretization"] = {{"type", "sph"},
+                                        {"elements_across", 8},
+                                        {"sector", "quarter"},
+                                        {"sph",
+                                         {{"lattice", "cubic"},
+                                          {"kernel", "wendland-c2"},
+                                          {"viscosity_linear", 0.5},
+                                          {"hourglass_coefficient", 0.3},
+                                          {"update_threshold", 0.7},
+                                          {"boundary_layers", 2}}}};
+  const LoadedScene loaded = read_scene(doc);
+  const BodySpec& b = loaded.scene.bodies[0];
+  EXPECT_EQ(b.discretization, Discretization::sph);
+  EXPECT_EQ(b.sector, SectorKind::quarter);
+  EXPECT_EQ(b.lattice, Lattice::cubic);
+  EXPECT_EQ(b.sph.kernel, SphKernel::wendland_c2);
+  EXPECT_EQ(b.sph.visc_linear, 0.5);
+  EXPECT_EQ(b.sph.visc_quadratic, 4.0);  // thesis default
+  EXPECT_EQ(b.sph.hourglass_coefficient, 0.3);
+  EXPECT_EQ(b.sph.update_threshold, 0.7);
+  EXPECT_EQ(b.sph_boundary_layers, 2);
+  // The resolved scene states every setting and reads back to the same body.
+  const json& d = loaded.resolved["bodies"][0]["discretization"];
+  EXPECT_EQ(d["sph"]["viscosity_quadratic"], 4.0);
+  const LoadedScene again = read_scene(loaded.resolved);
+  EXPECT_EQ(again.resolved, loaded.resolved);
+}
+
+TEST(SceneIo, sph_settings_only_on_sph_bodies) {
+  json doc = hex_scene();
+  doc["bodies"][0]["discretization"]["sph"] = {{"lattice", "hcp"}};
+  expect_violation(doc, "/bodies/0/discretization/sph", "only sph bodies take sph settings");
 }
 
 TEST(SceneIo, duplicate_body_names) {

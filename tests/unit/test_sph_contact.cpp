@@ -1,0 +1,177 @@
+// SPH detection kinds of the contact interface (contact_search.hpp):
+//  - pinball SPH-SPH and SPH particles on FE quads: the bucket search finds
+//    exactly the pairs of the all-pairs search on jittered particle clouds;
+//  - the pinball geometry: gap |x_s - x_m| - R_s - R_m along the centre line;
+//  - adhesive areas of thesis 2.2.4 on the links: pi R^2 with the mean radius
+//    for SPH-SPH, min(face area, pi R^2) for SPH on an FE face.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "solver/contact/contact_interface.hpp"
+#include "solver/contact/contact_search.hpp"
+#include "solver/mesh/generators.hpp"
+#include "solver/mesh/mesh.hpp"
+#include "solver/sph/sph_particles.hpp"
+
+namespace splat {
+namespace {
+
+struct Clouds {
+  std::vector<Vec3> x;
+  ContactSurface master, slave;
+};
+
+// A ball of particles (spacing d, radius d/2 pinballs) pressed by `overlap`
+// into a block of particles (master) or of hexahedra (master faces).
+Clouds ball_on_block(double overlap, unsigned seed, bool fe_block,
+                     double ball_radius_factor = 1.0) {
+  const double d = 1e-6;
+  Clouds c;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.1 * d, 0.1 * d);
+  std::vector<int> mids;
+  std::vector<double> mr;
+  if (fe_block) {
+    const HexMesh block =
+        hex_box(Vec3(-6 * d, -6 * d, -4 * d), Vec3(6 * d, 6 * d, 0), 9, 9, 3, Grading{});
+    for (const Vec3& p : block.nodes) c.x.push_back(p + Vec3(0, 0, jitter(rng)));
+    c.master = make_contact_surface(DetectionKind::node_on_quad, block.boundary_faces);
+  } else {
+    ParticleSpec b;
+    b.shape = ParticleShape::box;
+    b.lo = Vec3(-6 * d, -6 * d, -4 * d);
+    b.hi = Vec3(6 * d, 6 * d, 0);
+    b.lattice = Lattice::cubic;
+    b.spacing = d;
+    const ParticleCloud block = generate_particles(b);
+    for (std::size_t i = 0; i < block.size(); ++i) {
+      mids.push_back(static_cast<int>(c.x.size()));
+      mr.push_back(0.5 * d);
+      c.x.push_back(block.x[i] + Vec3(jitter(rng), jitter(rng), jitter(rng)));
+    }
+    c.master = make_particle_surface(mids, mr);
+  }
+  ParticleSpec s;
+  s.shape = ParticleShape::sphere;
+  s.radius = 4 * d;
+  s.centre = Vec3(0.3 * d, -0.2 * d, 4 * d - overlap);
+  s.spacing = d;
+  const ParticleCloud ball = generate_particles(s);
+  std::vector<int> sids;
+  std::vector<double> sr;
+  for (std::size_t i = 0; i < ball.size(); ++i) {
+    sids.push_back(static_cast<int>(c.x.size()));
+    sr.push_back(0.5 * d * ball_radius_factor);
+    c.x.push_back(ball.x[i] + Vec3(jitter(rng), jitter(rng), jitter(rng)));
+  }
+  c.slave = make_particle_surface(sids, sr);
+  return c;
+}
+
+void expect_same_pairs(const Clouds& c, std::size_t at_least) {
+  const SearchSettings st;
+  const auto fast = find_pairs_buckets(c.master, c.slave, c.x, st);
+  const auto slow = find_pairs_all_pairs(c.master, c.slave, c.x, st);
+  ASSERT_EQ(fast.size(), slow.size());
+  EXPECT_GE(fast.size(), at_least);
+  for (std::size_t i = 0; i < fast.size(); ++i) {
+    EXPECT_EQ(fast[i].slave, slow[i].slave) << i;
+    EXPECT_EQ(fast[i].face, slow[i].face) << i;
+    EXPECT_EQ(fast[i].geometry.gap, slow[i].geometry.gap) << i;
+  }
+}
+
+TEST(SphContactSearch, pinball_buckets_match_all_pairs) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    for (double overlap : {-0.5e-6, 0.2e-6, 0.6e-6}) {
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " overlap " << overlap);
+      expect_same_pairs(ball_on_block(overlap, seed, false), overlap > 0.0 ? 3 : 0);
+      // Unequal radii on the two sides.
+      expect_same_pairs(ball_on_block(overlap, seed, false, 1.5), overlap > 0.0 ? 3 : 0);
+    }
+  }
+}
+
+TEST(SphContactSearch, particles_on_quads_buckets_match_all_pairs) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    for (double overlap : {-0.5e-6, 0.2e-6, 0.6e-6}) {
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " overlap " << overlap);
+      expect_same_pairs(ball_on_block(overlap, seed, true), overlap > 0.0 ? 3 : 0);
+    }
+  }
+}
+
+TEST(SphContactSearch, pinball_gap_is_centre_distance_minus_radii) {
+  std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(0.3e-6, 0.4e-6, 1.0e-6)};
+  const ContactSurface master = make_particle_surface({0}, {0.6e-6});
+  const ContactSurface slave = make_particle_surface({1}, {0.5e-6});
+  const auto pairs = find_pairs_all_pairs(master, slave, x, SearchSettings{});
+  ASSERT_EQ(pairs.size(), 1u);
+  const double dist = x[1].norm();
+  EXPECT_NEAR(pairs[0].geometry.gap, dist - 1.1e-6, 1e-18);
+  EXPECT_NEAR((pairs[0].geometry.normal - x[1] / dist).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(pairs[0].geometry.normal.dot(pairs[0].geometry.tangent1), 0.0, 1e-15);
+  EXPECT_NEAR(slave_node_area(slave, 0, x), std::numbers::pi * 0.25e-12, 1e-27);
+}
+
+// Two particles pressed together (or a particle onto an FE face) bond on
+// first touch; the link's area is the thesis 2.2.4 area.
+TEST(SphContactAdhesion, link_areas_follow_thesis_2_2_4) {
+  AdhesionParams ap;
+  ap.G_c = 1.0;
+  ap.activation = ActivationRule::none;
+  ContactSettings cs;
+  cs.adhesion = ap;
+  const double Rs = 0.5e-6, Rm = 0.7e-6;
+  auto run = [&](ContactSurface master, ContactSurface slave, NodeSet& n) {
+    ContactInterface ci("m", "s", std::move(master), std::move(slave), cs, false, n.size());
+    std::vector<std::uint8_t> mask(n.size(), 0);
+    const double dt = 1e-9;
+    for (int step = 0; step < 4; ++step) {
+      for (std::size_t i = 0; i < n.size(); ++i) n.x[i] += dt * n.v[i];  // predict
+      ci.lagrange_step(n, mask, dt, {}, {});
+    }
+    return ci;
+  };
+  auto nodes_of = [](const std::vector<Vec3>& x, const std::vector<Vec3>& v) {
+    NodeSet n;
+    n.x0 = n.x = x;
+    n.v = v;
+    n.f.assign(x.size(), Vec3::Zero());
+    n.mass.assign(x.size(), 1e-12);
+    n.boundary.assign(x.size(), 0u);
+    return n;
+  };
+  {
+    // SPH-SPH: the slave approaches the master particle along z.
+    NodeSet n =
+        nodes_of({Vec3(0, 0, 0), Vec3(0, 0, Rs + Rm + 5e-9)}, {Vec3::Zero(), Vec3(0, 0, -10.0)});
+    const ContactInterface ci =
+        run(make_particle_surface({0}, {Rm}), make_particle_surface({1}, {Rs}), n);
+    ASSERT_EQ(ci.link_states()[0], LinkState::active);
+    const double R = 0.5 * (Rs + Rm);
+    EXPECT_NEAR(ci.link_area()[0], std::numbers::pi * R * R, 1e-24);
+  }
+  for (double side : {2e-6, 0.5e-6}) {
+    // SPH on a square FE face of side `side`: min(face area, pi Rs^2).
+    const double h = 0.5 * side;
+    NodeSet n =
+        nodes_of({Vec3(-h, -h, 0), Vec3(h, -h, 0), Vec3(h, h, 0), Vec3(-h, h, 0),
+                  Vec3(0.1 * h, 0, Rs + 5e-9)},
+                 {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3(0, 0, -10.0)});
+    const ContactInterface ci =
+        run(make_contact_surface(DetectionKind::node_on_quad, {{0, 1, 2, 3}}),
+            make_particle_surface({4}, {Rs}), n);
+    ASSERT_EQ(ci.link_states()[0], LinkState::active);
+    // The face's nodes were pushed a little (1e-6 of its area) before the link formed.
+    const double expected = std::min(side * side, std::numbers::pi * Rs * Rs);
+    EXPECT_NEAR(ci.link_area()[0], expected, 1e-5 * expected) << side;
+  }
+}
+
+}  // namespace
+}  // namespace splat
