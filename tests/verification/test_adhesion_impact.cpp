@@ -138,12 +138,15 @@ TEST(AdhesionImpact, adhesive_cylinder_size_effect) {
 }
 
 TEST(AdhesionImpact, elastic_rebound_falls_with_sigma_c) {
-  // The elastic sphere of thesis 3.5.2.1 at 1e-4 of its size (see the scale
+  // The elastic sphere of thesis 3.5.2.1 at 1e-3 of its size (see the scale
   // note above), viscous hourglass control, G_c = 0.02 J/m^2, bonded on
-  // first contact; sigma_c from 1e7 Pa to 1e10 Pa, then no cap.
+  // first contact; sigma_c from 1e7 Pa to 1e10 Pa, then no cap. Measured:
+  // 19.55, 19.20, 17.21, 15.48, 15.48 m/s (19.58 without adhesion). At 1e-4
+  // of the size the uncapped sphere stays bonded by one link (it vibrates on
+  // it); at 3e-3 the plateau (18.35 m/s) is reached from sigma_c = 1e9 Pa.
   json base = scene_file("elastic_sphere_bounce_axisym");
   for (json& b : base["bodies"]) b.erase("hourglass");
-  scale_lengths(base, 1e-4);
+  scale_lengths(base, 1e-3);
   base["time"]["end_time"] = 2 * base["time"]["end_time"].get<double>();
   const RunSummary f = run_scene(base);
   ASSERT_EQ(f.outcome, RunOutcome::finished) << f.reason;
