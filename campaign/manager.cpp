@@ -116,7 +116,6 @@ JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::files
   return e;
 }
 
-
 Sample classify(const PointStatus& p) {
   Sample s;
   s.velocity = p.point.velocity;

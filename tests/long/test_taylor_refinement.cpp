@@ -49,7 +49,8 @@ Row run_at(int across) {
 TEST(taylor_anvil_refinement, final_length_converges) {
   std::vector<Row> rows;
   for (int across : {4, 8, 16, 32}) rows.push_back(run_at(across));
-  std::printf("| across | elements | steps | final length (mm) | footprint radius (mm) | CPU s |\n");
+  std::printf(
+      "| across | elements | steps | final length (mm) | footprint radius (mm) | CPU s |\n");
   std::printf("| --- | --- | --- | --- | --- | --- |\n");
   for (const Row& r : rows) {
     std::printf("| %d | %lld | %lld | %.3f | %.3f | %.1f |\n", r.across, r.elements, r.steps,
