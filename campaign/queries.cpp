@@ -63,31 +63,7 @@ CampaignTiming campaign_timing(Store& store, std::int64_t campaign_id) {
 
 JobCounts all_job_counts(Store& store) {
   Statement s = store.reader().prepare("SELECT state, COUNT(*) FROM jobs GROUP BY state");
-  JobCounts c;
-  while (s.step()) {
-    const int n = static_cast<int>(s.int64(1));
-    switch (job_state_from_string(s.text(0))) {
-      case JobState::queued:
-        c.queued = n;
-        break;
-      case JobState::running:
-        c.running = n;
-        break;
-      case JobState::succeeded:
-        c.succeeded = n;
-        break;
-      case JobState::failed:
-        c.failed = n;
-        break;
-      case JobState::cancelled:
-        c.cancelled = n;
-        break;
-      case JobState::timed_out:
-        c.timed_out = n;
-        break;
-    }
-  }
-  return c;
+  return read_job_counts(s);
 }
 
 std::vector<double> all_wall_seconds(Store& store) {

@@ -566,36 +566,39 @@ std::vector<PointStatus> Store::points(std::int64_t campaign_id) {
   return out;
 }
 
+int& JobCounts::of(JobState state) {
+  switch (state) {
+    case JobState::queued:
+      return queued;
+    case JobState::running:
+      return running;
+    case JobState::succeeded:
+      return succeeded;
+    case JobState::failed:
+      return failed;
+    case JobState::cancelled:
+      return cancelled;
+    case JobState::timed_out:
+      return timed_out;
+  }
+  return queued;
+}
+
+JobCounts read_job_counts(Statement& grouped_by_state) {
+  JobCounts c;
+  while (grouped_by_state.step()) {
+    c.of(job_state_from_string(grouped_by_state.text(0))) +=
+        static_cast<int>(grouped_by_state.int64(1));
+  }
+  return c;
+}
+
 JobCounts Store::job_counts(std::int64_t campaign_id) {
   Statement s = reader().prepare(
       "SELECT j.state, COUNT(*) FROM jobs j WHERE j.hash IN "
       "(SELECT job_hash FROM campaign_points WHERE campaign_id = ?) GROUP BY j.state");
   s.bind(1, campaign_id);
-  JobCounts c;
-  while (s.step()) {
-    const int n = static_cast<int>(s.int64(1));
-    switch (job_state_from_string(s.text(0))) {
-      case JobState::queued:
-        c.queued = n;
-        break;
-      case JobState::running:
-        c.running = n;
-        break;
-      case JobState::succeeded:
-        c.succeeded = n;
-        break;
-      case JobState::failed:
-        c.failed = n;
-        break;
-      case JobState::cancelled:
-        c.cancelled = n;
-        break;
-      case JobState::timed_out:
-        c.timed_out = n;
-        break;
-    }
-  }
-  return c;
+  return read_job_counts(s);
 }
 
 int Store::refinement_points_count(std::int64_t campaign_id) {

@@ -110,7 +110,13 @@ struct JobCounts {
   int queued = 0, running = 0, succeeded = 0, failed = 0, cancelled = 0, timed_out = 0;
   int total() const { return queued + running + succeeded + failed + cancelled + timed_out; }
   int finished() const { return succeeded + failed + cancelled + timed_out; }
+  // The counter of one state.
+  int& of(JobState state);
 };
+
+// Counts of the rows (state text, count) a "SELECT state, COUNT(*) ...
+// GROUP BY state" statement returns.
+JobCounts read_job_counts(Statement& grouped_by_state);
 
 struct AddPointsStats {
   int points_added = 0;   // new (parameter set, velocity) points of the campaign

@@ -16,28 +16,17 @@
 
 #include "solver/input/schema.hpp"
 #include "solver/io/result_file.hpp"
+#include "support/scene_runs.hpp"
 
 namespace splat {
 namespace {
 
 using nlohmann::json;
 
-struct Output {
-  int code = -1;
-  std::string stdout_text;
-};
+using Output = test_support::CommandOutput;
 
 Output run(const std::string& args) {
-  const std::string cmd = std::string(SPLAT_BINARY) + " " + args + " 2>/dev/null";
-  Output out;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.stdout_text.append(buf.data(), n);
-  const int status = pclose(pipe);
-  out.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
+  return test_support::run_command(std::string(SPLAT_BINARY) + " " + args + " 2>/dev/null");
 }
 
 const std::string scene = std::string(SPLAT_SOURCE_DIR) + "/scenes/impact_al_al.json";

@@ -40,6 +40,7 @@
 #include "solver/core/simulation.hpp"
 #include "solver/input/scene_io.hpp"
 #include "solver/input/schema.hpp"
+#include "support/scene_runs.hpp"
 
 namespace splat {
 namespace {
@@ -47,11 +48,7 @@ namespace {
 using nlohmann::json;
 
 RunSummary run_scene(const json& doc) {
-  const LoadedScene loaded = read_scene(doc);
-  SimulationOptions options;
-  options.threads = 1;
-  Simulation sim(loaded.scene, loaded.resolved, options);
-  RunSummary s = sim.run();
+  RunSummary s = test_support::run_scene(doc);
   // The summary with its adhesion records is a valid result document.
   for (const SchemaViolation& v : validate("result", to_json(s))) ADD_FAILURE() << to_string(v);
   return s;

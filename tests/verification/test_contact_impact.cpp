@@ -21,19 +21,14 @@
 #include "solver/core/simulation.hpp"
 #include "solver/input/scene_io.hpp"
 #include "solver/input/schema.hpp"
+#include "support/scene_runs.hpp"
 
 namespace splat {
 namespace {
 
 using nlohmann::json;
 
-RunSummary run_scene(const json& doc) {
-  const LoadedScene loaded = read_scene(doc);
-  SimulationOptions options;
-  options.threads = 1;
-  Simulation sim(loaded.scene, loaded.resolved, options);
-  return sim.run();
-}
+using test_support::run_scene;
 
 json elastic_al() {
   return json::parse(R"({"base": "al-thesis", "strength": {"A": 148.4e9}})");
