@@ -142,27 +142,26 @@ void Simulation::Impl::write_snapshot(bool final_state) {
   };
   std::vector<Arrays> arrays(model.bodies.size() + model.sph_bodies.size());
   std::vector<BodySnapshot> snaps;
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    const FeBody& body = model.bodies[b];
-    Arrays& a = arrays[b];
-    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
-      for (int c = 0; c < dim; ++c) {
-        a.coords.push_back(n.x[i][c]);
-        a.velocity.push_back(n.v[i][c]);
-      }
+  // Node coordinates and velocity; one cell's fields (element centre or
+  // particle); the snapshot of a body from its arrays.
+  const auto add_node = [&](Arrays& a, std::size_t i) {
+    for (int c = 0; c < dim; ++c) {
+      a.coords.push_back(n.x[i][c]);
+      a.velocity.push_back(n.v[i][c]);
     }
-    for (std::size_t e = 0; e < body.num_elements(); ++e) {
-      const PointState& st = body.state[e];
-      a.eps_p.push_back(st.eps_p);
-      a.temperature.push_back(st.T);
-      a.damage.push_back(st.D);
-      a.yield.push_back(st.sigma_y);
-      a.mises.push_back(von_mises(st.s));
-      a.pressure.push_back(st.p);
-      a.active.push_back(body.active[e]);
-    }
+  };
+  const auto add_cell = [](Arrays& a, const PointState& st, int active) {
+    a.eps_p.push_back(st.eps_p);
+    a.temperature.push_back(st.T);
+    a.damage.push_back(st.D);
+    a.yield.push_back(st.sigma_y);
+    a.mises.push_back(von_mises(st.s));
+    a.pressure.push_back(st.p);
+    a.active.push_back(active);
+  };
+  const auto add_snapshot = [&](const std::string& name, const Arrays& a) {
     BodySnapshot s;
-    s.body = body.name;
+    s.body = name;
     s.coordinates = a.coords;
     s.fields = {
         {"velocity", "m/s", false, dim, a.velocity},  {"plastic_strain", "-", true, 1, a.eps_p},
@@ -171,36 +170,25 @@ void Simulation::Impl::write_snapshot(bool final_state) {
         {"pressure", "Pa", true, 1, a.pressure}};
     s.active_cells = a.active;
     snaps.push_back(std::move(s));
+  };
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const FeBody& body = model.bodies[b];
+    Arrays& a = arrays[b];
+    for (std::size_t i = body.node_begin; i < body.node_end; ++i) add_node(a, i);
+    for (std::size_t e = 0; e < body.num_elements(); ++e) {
+      add_cell(a, body.state[e], body.active[e]);
+    }
+    add_snapshot(body.name, a);
   }
   // SPH bodies: one point cell per particle, fields on the cells.
   for (std::size_t k = 0; k < model.sph_bodies.size(); ++k) {
     const SphBody& body = model.sph_bodies[k];
     Arrays& a = arrays[model.bodies.size() + k];
     for (std::size_t p = 0; p < body.size(); ++p) {
-      const std::size_t i = body.node_begin + p;
-      for (int c = 0; c < dim; ++c) {
-        a.coords.push_back(n.x[i][c]);
-        a.velocity.push_back(n.v[i][c]);
-      }
-      const PointState& st = body.state[p];
-      a.eps_p.push_back(st.eps_p);
-      a.temperature.push_back(st.T);
-      a.damage.push_back(st.D);
-      a.yield.push_back(st.sigma_y);
-      a.mises.push_back(von_mises(st.s));
-      a.pressure.push_back(st.p);
-      a.active.push_back(body.active[p]);
+      add_node(a, body.node_begin + p);
+      add_cell(a, body.state[p], body.active[p]);
     }
-    BodySnapshot s;
-    s.body = body.name;
-    s.coordinates = a.coords;
-    s.fields = {
-        {"velocity", "m/s", false, dim, a.velocity},  {"plastic_strain", "-", true, 1, a.eps_p},
-        {"temperature", "K", true, 1, a.temperature}, {"damage", "-", true, 1, a.damage},
-        {"yield_stress", "Pa", true, 1, a.yield},     {"von_mises", "Pa", true, 1, a.mises},
-        {"pressure", "Pa", true, 1, a.pressure}};
-    s.active_cells = a.active;
-    snaps.push_back(std::move(s));
+    add_snapshot(body.name, a);
   }
   file->write_snapshot(time, snaps);
 }
