@@ -2,6 +2,7 @@
 # Installs the Debian 12 packages splat needs (only when one is missing) and
 # configures + builds the project. Idempotent; run as root on a fresh machine.
 #   scripts/setup.sh [BUILD_DIR] [extra cmake args...]
+# SPLAT_BUILD_TARGETS="a b" builds only those targets (default: all).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${1:-$here/build}"
@@ -25,4 +26,6 @@ if ((${#missing[@]})); then
 fi
 
 cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
-cmake --build "$build_dir" -j "$(nproc)"
+targets=()
+for t in ${SPLAT_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build_dir" -j "$(nproc)" "${targets[@]}"
