@@ -12,23 +12,14 @@
 
 #include "campaign/process.hpp"
 #include "campaign/store.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
 using namespace splat::campaign;
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("splat_store_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using splat::test_support::TempDir;
 
 CampaignRecord campaign_named(const std::string& name) {
   CampaignRecord c;
