@@ -66,17 +66,21 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
   for (int it = 1; it <= max_iterations; ++it) {
     r.iterations = it;
     const double ep = eps_p + dp;
-    double hard = jc.A, d_hard = 0.0;
+    double hard = jc.A, d_hard = 0.0, dd_hard = 0.0;
     if (ep > 0.0) {
       const double pw = std::exp(jc.n * std::log(ep));  // ep^n: exp and log cost less than pow
+      const double inv_ep = 1.0 / ep;                   // one division, off the exp-log path
       hard += jc.B * pw;
-      d_hard = jc.B * jc.n * pw / ep;
+      d_hard = jc.B * jc.n * pw * inv_ep;
+      dd_hard = (jc.n - 1.0) * d_hard * inv_ep;
     }
-    double rate = 1.0, d_rate = 0.0;
+    double rate = 1.0, d_rate = 0.0, dd_rate = 0.0;
     const double x = dp * inv_ref;
     if (rate_on && x > 1.0) {
       rate += jc.C * std::log(x);
-      d_rate = jc.C / dp;
+      const double inv_dp = 1.0 / dp;
+      d_rate = jc.C * inv_dp;
+      dd_rate = -d_rate * inv_dp;
     }
     r.hard = hard;
     r.rate = rate;
@@ -95,9 +99,14 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
       r.converged = true;
       break;
     }
+    // Halley's step dp - 2 g g' / (2 g'^2 - g g'') (cubic convergence: from
+    // the previous step's rate one step lands within the tolerance where
+    // Newton's needs two), Newton's where the curvature term is not small.
     const double slope = -three_g - scale * (d_hard * rate + hard * d_rate);
-    double next = dp - g / slope;
-    // Bisect when Newton leaves the bracket, stalls, or meets an unbounded slope.
+    const double curv = -scale * (dd_hard * rate + 2.0 * d_hard * d_rate + hard * dd_rate);
+    const double gc = g * curv, s2 = 2.0 * slope * slope;
+    double next = std::abs(gc) < 0.5 * s2 ? dp - 2.0 * g * slope / (s2 - gc) : dp - g / slope;
+    // Bisect when the step leaves the bracket, stalls, or meets an unbounded slope.
     if (!(next > lo && next < hi) || next == dp) next = 0.5 * (lo + hi);
     dp = next;
   }
