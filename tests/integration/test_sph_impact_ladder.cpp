@@ -25,7 +25,7 @@ using Output = test_support::CommandOutput;
 const std::string scene = std::string(SPLAT_SOURCE_DIR) + "/scenes/impact_al_al_sph.json";
 
 Output run(const std::string& args) {
-  return test_support::run_command(std::string(SPLAT_BINARY) + " " + args + " 2>/dev/null");
+  return test_support::run_splat(args, false);
 }
 
 TEST(sph_impact_ladder, every_sph_level_runs_a_short_impact_to_a_valid_summary) {
