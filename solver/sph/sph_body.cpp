@@ -67,28 +67,35 @@ void check_settings(const SphSettings& s) {
   if (!(s.max_h_growth >= 1.0)) bad("max_h_growth must be >= 1");
 }
 
-// F and Fdot of particle i from the current positions and velocities.
-inline void deformation(const SphBody& b, const NodeSet& nodes, std::size_t i, Mat3& F,
-                        Mat3& Fdot) {
+// F and Fdot of particle i from the current positions and velocities:
+// F_i = N_i + A_i B_i^T, Fdot_i = Adot_i B_i^T with
+// A_i = sum_j (op(x_j) - x_i) (x) V_j g_ij, Adot_i = sum_j (S v_j - v_i) (x) V_j g_ij
+// (V_j gc_ij = B_i V_j g_ij, so the correction leaves the pair loop).
+inline void deformation(const SphBody& b, const NodeSet& nodes, bool mirrors, std::size_t i,
+                        Mat3& F, Mat3& Fdot) {
   const std::size_t base = b.node_begin;
   const Vec3 xi = nodes.x[base + i];
   const Vec3 vi = nodes.v[base + i];
-  F = b.null_projector[i];
-  Fdot.setZero();
+  const Vec3 Xi = b.X[i];
+  Mat3 A = Mat3::Zero(), Adot = Mat3::Zero();
   const int end = b.pairs.offsets[i + 1];
   for (int k = b.pairs.offsets[i]; k < end; ++k) {
     const std::size_t kk = static_cast<std::size_t>(k);
     const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
-    const std::uint8_t op = b.pairs.op[kk];
-    const Vec3& g = b.pair_grad[kk];
-    Vec3 xj = nodes.x[base + j], vj = nodes.v[base + j];
+    const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
+    Vec3 xj = nodes.x[base + j], vj = nodes.v[base + j], Xj = b.X[j];
     if (op != 0) {
       xj = mirror_point(b.planes, op, xj);
       vj = mirror_vector(b.planes, op, vj);
+      Xj = mirror_point(b.planes, op, Xj);
     }
-    F.noalias() += (xj - xi) * g.transpose();
-    Fdot.noalias() += (vj - vi) * g.transpose();
+    const Vec3 g = b.pair_t[kk] * (Xj - Xi);  // V_j g_ij
+    A.noalias() += (xj - xi) * g.transpose();
+    Adot.noalias() += (vj - vi) * g.transpose();
   }
+  F = b.null_projector[i];
+  F.noalias() += A * b.B[i].transpose();
+  Fdot.noalias() = Adot * b.B[i].transpose();
 }
 
 }  // namespace
@@ -97,11 +104,11 @@ void sph_build_reference(SphBody& b) {
   const std::size_t n = b.size();
   b.pairs = find_neighbours(b.X, b.h, b.planes, b.active);
   const std::size_t np = b.pairs.num_pairs();
-  std::vector<int> reverse(np, -1);  // index of the reverse pair (j, i, op)
-  b.pair_grad.assign(np, Vec3::Zero());
+  b.pair_t.assign(np, 0.0);
   b.pair_w.assign(np, 0.0f);
   b.pair_dw.assign(np, 0.0f);
   b.null_projector.assign(n, Mat3::Zero());
+  b.B.assign(n, Mat3::Zero());
 
   const long long count = static_cast<long long>(n);
   SPLAT_OMP(omp parallel for schedule(static) if (count >= min_parallel_particles))
@@ -118,19 +125,9 @@ void sph_build_reference(SphBody& b) {
       const KernelValue kv = kernel(b.settings.kernel, r0, 0.5 * (b.h[i] + b.h[j]));
       b.pair_w[kk] = static_cast<float>(b.volume_ref[j] * kv.w);
       b.pair_dw[kk] = static_cast<float>(kv.dw_dr);
-      b.pair_grad[kk] = (-kv.dw_dr / r0) * dX;  // uncorrected for now
-      C.noalias() += b.volume_ref[j] * dX * b.pair_grad[kk].transpose();
-      // Reverse pair (j, i, op) in j's list, sorted by (op, j).
-      const int* first = b.pairs.j.data() + b.pairs.offsets[j];
-      const int* last = b.pairs.j.data() + b.pairs.offsets[j + 1];
-      const std::uint8_t* op_first = b.pairs.op.data() + b.pairs.offsets[j];
-      for (const int* p = first; p != last; ++p) {
-        const std::size_t at = static_cast<std::size_t>(p - first);
-        if (op_first[at] == op && *p == static_cast<int>(i)) {
-          reverse[kk] = b.pairs.offsets[j] + static_cast<int>(at);
-          break;
-        }
-      }
+      const double s = -kv.dw_dr / r0;  // g_ij = s dX (uncorrected)
+      b.pair_t[kk] = b.volume_ref[j] * s;
+      C.noalias() += b.volume_ref[j] * dX * (s * dX).transpose();
     }
     // C is symmetric positive semi-definite and close to I for a full
     // neighbourhood (about 1/2 across a flat free surface, less at edges and
@@ -160,18 +157,7 @@ void sph_build_reference(SphBody& b) {
       }
       b.null_projector[i] = null;
     }
-    for (int k = begin; k < end; ++k) {
-      const std::size_t kk = static_cast<std::size_t>(k);
-      b.pair_grad[kk] =
-          b.volume_ref[static_cast<std::size_t>(b.pairs.j[kk])] * (B * b.pair_grad[kk]);
-    }
-  }
-  for (std::size_t k = 0; k < np; ++k) {
-    if (reverse[k] < 0) throw std::logic_error("SPH reference: neighbour lists are not symmetric");
-  }
-  b.pair_grad_rev.resize(np);
-  for (std::size_t k = 0; k < np; ++k) {
-    b.pair_grad_rev[k] = b.pair_grad[static_cast<std::size_t>(reverse[k])];
+    b.B[i] = B;
   }
   b.F.assign(n, Mat3::Identity());
   b.Fdot.assign(n, Mat3::Zero());
@@ -209,7 +195,7 @@ SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const
   b.F_ref.assign(n, Mat3::Identity());
   b.h.assign(n, h0);
   b.state.resize(n);
-  b.VP.assign(n, Mat3::Zero());
+  b.PB.assign(n, Mat3::Zero());
   b.dt_bound.assign(n, infinity);
   b.active.assign(n, 1);
   for (std::size_t i = 0; i < n; ++i) {
@@ -255,10 +241,11 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   std::vector<BlockSums> blocks;
 
   // Deformation from the reference; update the reference if due.
+  const bool mirrors = !b.planes.empty();
   const auto compute_F = [&]() {
     for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
       if (!b.active[i]) return;
-      deformation(b, nodes, i, b.F[i], b.Fdot[i]);
+      deformation(b, nodes, mirrors, i, b.F[i], b.Fdot[i]);
       s.max_deformation = std::max(s.max_deformation, (b.F[i] - Mat3::Identity()).norm());
     });
     double m = 0.0;
@@ -284,14 +271,14 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   std::vector<std::uint8_t> failed(n, 0);
   for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
     if (!b.active[i]) {
-      b.VP[i].setZero();
+      b.PB[i].setZero();
       return;
     }
     const Mat3& F = b.F[i];
     const double detF = F.determinant();
     if (!(detF > 0.0)) {
       ++s.inverted;
-      b.VP[i].setZero();
+      b.PB[i].setZero();
       return;
     }
     PointState& st = b.state[i];
@@ -309,7 +296,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       s.failed = s.failed || !r.converged;
       if (can_fail && st.D >= dm.D_max - 1e-12) failed[i] = 1;
     }
-    b.VP[i] = (b.volume_ref[i] * detF) * st.cauchy() * F.inverse().transpose();
+    b.PB[i].noalias() = (detF * st.cauchy()) * (F.inverse().transpose() * b.B[i]);
   });
   for (const BlockSums& s : blocks) {
     result.max_return_iterations = std::max(result.max_return_iterations, s.max_iterations);
@@ -319,7 +306,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   for (std::size_t i = 0; i < n; ++i) {
     if (failed[i]) {
       b.active[i] = 0;
-      b.VP[i].setZero();
+      b.PB[i].setZero();
       result.deactivated.push_back(static_cast<int>(i));
       result.deactivated_energy += b.volume0[i] * b.state[i].e;
       b.update_pending = true;
@@ -331,7 +318,6 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   const double alpha = b.settings.visc_linear, beta = b.settings.visc_quadratic;
   const double c_hg = b.settings.hourglass_coefficient;
   const double E = mat.elastic.E;
-  const bool mirrors = !b.planes.empty();
   // Per-particle quantities the pairs read: current density and the
   // hourglass modulus ((1 - D) E, or the flow stress once plastic).
   b.rho.resize(n);
@@ -356,9 +342,10 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     const double rho_i = b.rho[i];
     const double E_i = b.E_hg[i];
     const double h_i = b.h[i];
-    const Mat3& VPi = b.VP[i];
     const Mat3& Fi = b.F[i];
-    Vec3 f_stress = Vec3::Zero(), f_visc = Vec3::Zero(), f_hg = Vec3::Zero();
+    // Stress force V_i (P_i B_i sum_j V_j g_ij + sum_j S P_j B_j S V_j g_ij):
+    // a_i = sum_j V_j g_ij and f_pair the second sum.
+    Vec3 a_i = Vec3::Zero(), f_pair = Vec3::Zero(), f_visc = Vec3::Zero(), f_hg = Vec3::Zero();
     double r_min = infinity, max_mu = 0.0;
     const int end = b.pairs.offsets[i + 1];
     for (int k = b.pairs.offsets[i]; k < end; ++k) {
@@ -368,18 +355,19 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
       // op(X_j) - X_i, recomputed (storing it cost 24 B per pair).
       const Vec3 dX = (op != 0 ? mirror_point(b.planes, op, b.X[j]) : b.X[j]) - Xi;
-      Vec3 pj = b.VP[j] * b.pair_grad_rev[kk];
+      const Vec3 g = b.pair_t[kk] * dX;  // V_j g_ij
+      a_i += g;
       Vec3 xj = nodes.x[gj], vj = nodes.v[gj];
       Vec3 Fj_dX;  // (S F_j S) dX = S F_j (S dX)
       if (op != 0) {
-        pj = mirror_vector(b.planes, op, pj);
+        f_pair += mirror_vector(b.planes, op, b.PB[j] * mirror_vector(b.planes, op, g));
         xj = mirror_point(b.planes, op, xj);
         vj = mirror_vector(b.planes, op, vj);
         Fj_dX = mirror_vector(b.planes, op, b.F[j] * mirror_vector(b.planes, op, dX));
       } else {
+        f_pair.noalias() += b.PB[j] * g;
         Fj_dX = b.F[j] * dX;
       }
-      f_stress += VPi * b.pair_grad[kk] - pj;
       if (!b.active[j]) continue;
 
       const Vec3 x_ij = xj - xi;
@@ -411,6 +399,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
                 x_ij;
       }
     }
+    const Vec3 f_stress = Vi * (b.PB[i] * a_i + f_pair);
     nodes.f[gi] += f_stress + f_visc + f_hg;
     b.f_visc[i] = f_visc;
     b.f_hg[i] = f_hg;
@@ -429,6 +418,15 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     result.viscosity_power += s.viscosity_power;
   }
   return result;
+}
+
+Vec3 sph_pair_gradient(const SphBody& b, std::size_t k) {
+  const auto next =
+      std::upper_bound(b.pairs.offsets.begin(), b.pairs.offsets.end(), static_cast<int>(k));
+  const std::size_t i = static_cast<std::size_t>(next - b.pairs.offsets.begin()) - 1;
+  const std::size_t j = static_cast<std::size_t>(b.pairs.j[k]);
+  const Vec3 dX = mirror_point(b.planes, b.pairs.op[k], b.X[j]) - b.X[i];
+  return b.B[i] * (b.pair_t[k] * dX);
 }
 
 double sph_internal_energy(const SphBody& b) {
