@@ -32,9 +32,9 @@ mutations=(
   "solver/two_mass/two_mass_model.cpp|constexpr double k_restitution = 1.0;|constexpr double k_restitution = 0.95;|two_mass_adhesion.free_mass*"
   "solver/two_mass/two_mass_model.cpp|double v_new = v - dt * s.k * x / s.m;|double v_new = v - dt * 1.02 * s.k * x / s.m;|two_mass_adhesion.spring*"
   "solver/sph/sph_body.cpp|    b.B[i] = B;|    b.B[i] = Mat3::Identity();|SphWaves.ElasticWaveSpeedInAColumn"
-  "solver/sph/sph_body.cpp|f_pair.noalias() += b.PB[j] * g;|f_pair.noalias() -= b.PB[i] * g;|SphConservation.*"
+  "solver/sph/sph_body.cpp|mat_vec(PB + 9 * j, Sg, pg);|mat_vec(PB + 9 * i, Sg, pg);|SphConservation.*"
   "solver/sph/sph_body.cpp|(detF * st.cauchy()) * (F.inverse().transpose() * b.B[i]);|(detF * st.cauchy()) * b.B[i];|SphConservation.*"
-  "solver/sph/sph_body.cpp|f_pair += mirror_vector(b.planes, op, b.PB[j] * mirror_vector(b.planes, op, g));|f_pair += b.PB[j] * g;|SphBoundaries.QuarterBall*"
+  "solver/sph/sph_body.cpp|fp0 += sg[0] * pg[0], fp1 += sg[1] * pg[1], fp2 += sg[2] * pg[2];|fp0 += pg[0], fp1 += pg[1], fp2 += pg[2];|SphBoundaries.QuarterBall*"
   "solver/sph/sph_boundary.cpp|a.area.push_back(body.volume0[i] / layer_thickness);|a.area.push_back(body.volume0[i] / body.spacing);|SphBoundaries.AbsorbingEnd*"
   "solver/sph/sph_body.cpp|nodes.mass[g] = material.density * cloud.volume[i];|nodes.mass[g] = 1.1 * material.density * cloud.volume[i];|SphWaves.*"
 )
