@@ -21,6 +21,9 @@
 //   F_i   = sum_j V_j (op(x_j) - x_i) (x) gc_ij      (exact for linear fields,
 //                                                    free surfaces included)
 //   Fdot_i = sum_j V_j (S v_j - v_i) (x) gc_ij
+// Since g_ij = s_ij dX_ij with the scalar s_ij = -W'(r0, h_ij) / r0, each pair
+// stores only t_ij = V_j s_ij; B_i = C_i^-1 is applied per particle, after the
+// pair sums (F_i = sum_j (op(x_j) - x_i) (x) (t_ij dX_ij) B_i^T).
 //   L_i   = Fdot_i F_mid^-1, F_mid = F_i - dt/2 Fdot_i (mid-step, as the FE bodies)
 // Stress: Jaumann (Hughes-Winget) rotation of the deviator and update_point
 // with d_eps = sym(L) dt and J = J_ref det F (the volume ratio to the initial
@@ -28,6 +31,8 @@
 // Forces, the gradient of sum_i V_i W(F_i) (so they conserve linear and angular
 // momentum, sigma being symmetric):
 //   f_i = sum_j V_i V_j (P_i gc_ij - S P_j gc_ji)    (gc_ji: of the reverse pair (j, i, op))
+//       = V_i (P_i B_i sum_j t_ij dX_ij + sum_j S P_j B_j S t_ij dX_ij)
+// (g_ji = -S g_ij: the reverse pair needs no storage of its own).
 // Monaghan artificial viscosity (Monaghan 1992), between approaching pairs
 // (v_ij . x_ij < 0, x_ij = op(x_j) - x_i, v_ij = S v_j - v_i, r = |x_ij|):
 //   mu_ij = h_ij v_ij . x_ij / (r^2 + 0.01 h_ij^2),  m/s
@@ -113,11 +118,11 @@ struct SphBody {
   std::vector<Mat3> F_ref;           // deformation of the reference from the initial state, -
   std::vector<double> h;             // smoothing lengths, m
   NeighbourList pairs;               // reference neighbours (local indices)
-  std::vector<Vec3> pair_grad;       // V_j gc_ij (corrected gradient times volume), 1/m
-  std::vector<Vec3> pair_grad_rev;   // V_i gc_ji of the reverse pair (a copy, in order), 1/m
+  std::vector<double> pair_t;        // t_ij = V_j s_ij = -V_j W'(r0, h_ij) / r0, 1/m^2
   std::vector<float> pair_w;         // V_j W(r0, h_ij), - (float: read by the
   std::vector<float> pair_dw;        //   stabilising terms only), W'(r0, h_ij), 1/m^4
   std::vector<Mat3> null_projector;  // I - C^+ C (zero unless C_i is singular)
+  std::vector<Mat3> B;               // kernel correction C_i^-1 (bounded), -
   long long reference_updates = 0;   // count of updates so far
   bool update_pending = false;       // forces an update at the next call
 
@@ -125,7 +130,7 @@ struct SphBody {
   std::vector<PointState> state;     // material state
   std::vector<Mat3> F;               // deformation gradient from the reference, -
   std::vector<Mat3> Fdot;            // its rate, 1/s
-  std::vector<Mat3> VP;              // reference volume times first Piola-Kirchhoff stress, N m
+  std::vector<Mat3> PB;              // first Piola-Kirchhoff stress times B_i, Pa
   std::vector<double> dt_bound;      // per-particle time-step bound, s
   std::vector<double> rho;           // current density, kg/m^3
   std::vector<double> E_hg;          // hourglass modulus, Pa
@@ -167,6 +172,10 @@ SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const
 // hourglass forces ADDED to nodes.f. Each particle gathers its own pairs, so
 // the result does not depend on the number of OpenMP threads.
 SphStepResult sph_internal_forces(SphBody& body, NodeSet& nodes, double dt);
+
+// The corrected kernel gradient of pair k times the neighbour's volume, V_j
+// gc_ij = V_j B_i g_ij, 1/m (for checks: the force loops never form it).
+Vec3 sph_pair_gradient(const SphBody& body, std::size_t k);
 
 // Re-references the body at the current positions (see the header comment).
 void sph_update_reference(SphBody& body, const NodeSet& nodes);
