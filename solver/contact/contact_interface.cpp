@@ -28,7 +28,8 @@ ContactInterface::ContactInterface(std::string master_body, std::string slave_bo
 
 namespace {
 
-// Existing penetration pushed out per step, fraction of the face size, -.
+// Existing penetration pushed out per step (positions only), fraction of the
+// face size, -: a larger step distorts the elements behind the face.
 constexpr double k_pushout_fraction = 0.02;
 
 // Elements of `body` that contain global node g (ascending).
@@ -148,6 +149,8 @@ std::vector<DetectedPair> ContactInterface::detect(const NodeSet& nodes) {
 void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std::uint8_t>& mask,
                                      const std::vector<DetectedPair>& pairs, double dt) {
   problem_.clear_pairs();
+  start_gap_.clear();
+  pushout_.clear();
   problem_.inv_mass.clear();
   problem_.velocity.clear();
   release_local_nodes();
@@ -187,21 +190,28 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
     problem_.normal.push_back(dp.geometry.normal);
     problem_.tangent1.push_back(dp.geometry.tangent1);
     problem_.tangent2.push_back(dp.geometry.tangent2);
-    // Penetration already present at x_n (a fold or a pair first found behind
-    // its face) is pushed out at most k_pushout_fraction of the face size per
-    // step: a full push-out g_n / dt in one step gives the node a speed of
-    // the order of the wave speed and injects energy (fast impacts).
+    // Split impulse: the velocity rows only stop further penetration. A pair
+    // already behind its face at x_n (a fold, or a pair first found behind
+    // its face) gets b = -C v (no approach), not -g / dt: pushing it out
+    // through the velocity gives the node a speed of up to g_n / dt, the
+    // order of the wave speed at the steps of a fast impact, and injects
+    // kinetic energy. Its penetration is removed by the position-only pass
+    // (correct_positions), at most k_pushout_fraction of the face size per
+    // step.
     double b = -dp.geometry.gap / dt;
+    double g_n = 0.0;
     {
       double vn = 0.0;  // C v, normal rate of the pair (positive opening)
       for (int k = 0; k < npf + 1; ++k) {
         const int g = k == 0 ? sl.nodes[dp.slave] : ma.faces[dp.face][k - 1];
         vn += coef[k] * nodes.v[g].dot(dp.geometry.normal);
       }
-      const double g_n = dp.geometry.gap - dt * vn;
-      const double allowed = k_pushout_fraction * face_size(ma, dp.face, nodes.x);
-      if (g_n < -allowed) b = -vn + allowed / dt;
+      g_n = dp.geometry.gap - dt * vn;
+      if (g_n < 0.0) b = -vn;
     }
+    const double allowed = k_pushout_fraction * face_size(ma, dp.face, nodes.x);
+    start_gap_.push_back(g_n);
+    pushout_.push_back(g_n < 0.0 ? std::min(-g_n, allowed) : 0.0);
     problem_.b.push_back(b);
     problem_.lo.push_back(0.0);
     problem_.b_hold.push_back(problem_.b.back());
@@ -447,6 +457,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       nodes.v[g] += dv;
       nodes.x[g] += dt * dv;
     }
+    correct_positions(nodes, pairs, sol, dt);
     // Contact work: every impulse (compression, link tension, friction) times
     // the corrected relative velocity (eq. 1.21), the work of a force held
     // over the step on the displacement it drives. This, not the link's
@@ -513,6 +524,33 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
     stats_.max_bonded_area = std::max(stats_.max_bonded_area, stats_.bonded_area);
     stats_.max_links_active = std::max(stats_.max_links_active, stats_.links_active);
   }
+}
+
+void ContactInterface::correct_positions(NodeSet& nodes, const std::vector<DetectedPair>& pairs,
+                                         const ContactSolution& sol, double dt) {
+  if (std::none_of(pushout_.begin(), pushout_.end(), [](double p) { return p > 0.0; })) return;
+  // Pseudo-velocities w with C w >= b on the same rows and masses: a pushed
+  // pair reaches g_n + pushout, every other pair may close to contact but not
+  // beyond. Plain contact rows (no tension, no friction); x += dt w, v kept.
+  ContactProblem pos = problem_;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const double g_after = pairs[i].geometry.gap + dt * normal_rate(problem_, i, sol.dv);
+    const double target = pushout_[i] > 0.0 ? start_gap_[i] + pushout_[i] : 0.0;
+    pos.b[i] = (target - g_after) / dt;
+    pos.b_hold[i] = pos.b[i];
+    pos.lo[i] = 0.0;
+    pos.mu[i] = 0.0;
+  }
+  std::fill(pos.velocity.begin(), pos.velocity.end(), Vec3::Zero());
+  const ContactSolution w = solve_contact(pos, settings_.solver);
+  if (!w.converged) ++stats_.unconverged;
+  double moved = 0.0;
+  for (std::size_t l = 0; l < local_nodes_.size(); ++l) {
+    if (w.dv[l].isZero(0.0)) continue;
+    nodes.x[local_nodes_[l]] += dt * w.dv[l];
+    moved = std::max(moved, dt * w.dv[l].norm());
+  }
+  stats_.max_position_correction = std::max(stats_.max_position_correction, moved);
 }
 
 void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uint8_t>& mask,

@@ -5,7 +5,12 @@
 // Where it acts in the time step (README "Time step"):
 //   Lagrange  stage 3, after predict: pairs are found on the predicted
 //             positions x_{n+1}; the impulses p make x_{n+1} free of
-//             penetration; v_{n+1/2} += dv and x_{n+1} += dt dv.
+//             penetration; v_{n+1/2} += dv and x_{n+1} += dt dv. A pair
+//             already penetrating at x_n is only stopped by the velocity
+//             solve; a second, position-only solve (split impulse, as in
+//             Box2D and the penetration handling of explicit codes) moves it
+//             out by up to 2 % of its face size per step, x_{n+1} += dt w,
+//             without changing v (no energy made).
 //   penalty   stage 5, after the internal forces: f = kappa A (-g) n on the
 //             pairs that penetrate at x_{n+1}; the work of these forces is
 //             booked in the next stage 1, when they move the nodes.
@@ -83,6 +88,8 @@ struct ContactStats {
   double bonded_area = 0.0;        // m^2, area of the active links now
   double max_bonded_area = 0.0;    // m^2
   long long links_in_tension = 0;  // links that carried tension in the last step
+  // Largest node displacement of the position-only push-out in one step, m.
+  double max_position_correction = 0.0;
 };
 
 class ContactInterface {
@@ -136,6 +143,13 @@ class ContactInterface {
   void build_problem(const NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask,
                      const std::vector<DetectedPair>& pairs, double dt);
   void release_local_nodes();
+  // Split impulse, after the velocity solve (Lagrange): moves the nodes of
+  // pairs that were already penetrating at x_n out by pushout_ (m) through
+  // positions only. No velocity changes, so no kinetic energy is made; the
+  // stresses follow the velocity gradient, so no internal energy either:
+  // the correction does no work in the balance.
+  void correct_positions(NodeSet& nodes, const std::vector<DetectedPair>& pairs,
+                         const ContactSolution& sol, double dt);
   double scale() const;
   // Link state changes before the solve (activation, erosion, first touch)
   // from the material state of both sides; sets the areas of new links.
@@ -161,6 +175,8 @@ class ContactInterface {
   // Scratch, reused every step.
   ContactProblem problem_;
   std::size_t first_pass_pairs_ = 0;
+  std::vector<double> start_gap_;      // per pair: gap at x_n, g - dt C v, m
+  std::vector<double> pushout_;        // per pair: position push-out wanted this step, m
   std::vector<int> local_;             // global node -> local index, -1 when not in use
   std::vector<int> local_nodes_;       // local -> global
   std::vector<std::uint8_t> touched_;  // per slave node: has carried a force
