@@ -106,6 +106,15 @@ class ContactInterface {
   void attach_bodies(const std::vector<FeBody>& fe, const std::vector<SphBody>& sph,
                      bool master_is_sph, std::size_t master, bool slave_is_sph, std::size_t slave);
 
+  // After elements eroded (axisymmetric FE pairs): the segments their
+  // removal exposed join the surfaces, so the contact follows the eroded
+  // surface instead of letting the other body pass into the hole. Master:
+  // new segments appended (indices kept), segments of eroded elements no
+  // longer detected. Slave: rebuilt from the boundary of the active
+  // elements; the per-node link records move with their nodes, new nodes
+  // start unlinked. Segments on the axis (r = 0 at both ends) are left out.
+  void follow_erosion(const std::vector<FeBody>& bodies, const NodeSet& nodes);
+
   // Stage 3 (Lagrange): corrects v and x of the nodes in contact.
   // `bodies` are the model's bodies (the adhesion tests read their states).
   void lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask, double dt,
@@ -180,10 +189,13 @@ class ContactInterface {
   std::vector<int> local_;             // global node -> local index, -1 when not in use
   std::vector<int> local_nodes_;       // local -> global
   std::vector<std::uint8_t> touched_;  // per slave node: has carried a force
+  std::vector<std::uint8_t>
+      pressed_;  // per slave node: carried a force (or link tension) in the last step
   // Set once by attach_bodies: the slave-body elements around each slave node
   // (CSR) and the master-body element of each master face.
   std::vector<int> slave_elem_offsets_, slave_elem_entries_;
   std::vector<int> master_face_element_;
+  std::vector<std::uint8_t> master_face_dead_;      // 1: the face's element was eroded
   std::size_t master_index_ = 0, slave_index_ = 0;  // in the model's (FE or SPH) bodies
   bool master_sph_ = false, slave_sph_ = false;     // the side is an SPH body
   // Adhesion, per slave node (SoA): state, work, area, last master face,
