@@ -56,7 +56,6 @@ namespace {
 
 constexpr const char* k_prefix = "/api/v1";
 constexpr std::size_t k_max_history_points = 2000;
-constexpr std::size_t k_max_idempotency_keys = 10000;  // remembered submissions
 
 // An error answered as an RFC 9457 problem document.
 struct Problem {
@@ -70,6 +69,11 @@ struct Problem {
 [[noreturn]] void fail(int status, std::string slug, std::string title, std::string detail,
                        json errors = json::array()) {
   throw Problem{status, std::move(slug), std::move(title), std::move(detail), std::move(errors)};
+}
+
+[[noreturn]] void key_reused() {
+  fail(422, "idempotency-key-reused", "Idempotency-Key reused",
+       "this Idempotency-Key was used with a different body");
 }
 
 json errors_of(const std::vector<SchemaViolation>& violations) {
@@ -285,13 +289,6 @@ struct Server::Impl {
   fs::path jobs_dir;
   CampaignRunner runner;
   httplib::Server http;
-  std::mutex idempotency_mutex;
-  struct Remembered {
-    std::string body_hash;
-    std::int64_t campaign_id;
-  };
-  std::map<std::string, Remembered> idempotency;  // Idempotency-Key -> first submission
-  std::deque<std::string> idempotency_order;      // keys, oldest first
   std::set<std::string> material_names;
   std::atomic<bool> bound{false};
   std::atomic<long long> requests{0};
@@ -377,6 +374,41 @@ struct Server::Impl {
     };
   }
 
+  // Methods served per API path pattern ("GET, POST"), for the Allow header.
+  std::map<std::string, std::string> allowed;
+
+  void allow(const std::string& pattern, const char* method) {
+    std::string& m = allowed[pattern];
+    m += (m.empty() ? "" : ", ") + std::string(method);
+  }
+  void get(const std::string& pattern, httplib::Server::Handler h) {
+    allow(pattern, "GET");
+    http.Get(pattern, std::move(h));
+  }
+  void post(const std::string& pattern, httplib::Server::Handler h) {
+    allow(pattern, "POST");
+    http.Post(pattern, std::move(h));
+  }
+
+  // An API path asked with a method it does not serve answers 405 with the
+  // methods it does serve (a path that does not exist stays 404).
+  void refuse_other_methods() {
+    for (const auto& [pattern, methods] : allowed) {
+      const httplib::Server::Handler refuse =
+          guarded([methods = methods](const httplib::Request& req, httplib::Response& res) {
+            res.set_header("Allow", methods);
+            fail(405, "method-not-allowed", "Method Not Allowed",
+                 req.method + " is not served on " + req.path + "; allowed: " + methods);
+          });
+      const auto serves = [&](const char* m) { return methods.find(m) != std::string::npos; };
+      if (!serves("GET")) http.Get(pattern, refuse);
+      if (!serves("POST")) http.Post(pattern, refuse);
+      http.Put(pattern, refuse);
+      http.Patch(pattern, refuse);
+      http.Delete(pattern, refuse);
+    }
+  }
+
   void routes() {
     const std::string p = k_prefix;
     http.set_payload_max_length(o.max_body_bytes);
@@ -421,28 +453,27 @@ struct Server::Impl {
           write_problem(req, res, {500, "internal", "Internal Server Error", "", json::array()});
         });
 
-    http.Get(p + "/health", guarded([this](const httplib::Request& req, httplib::Response& res) {
-               const auto running = runner.running();
-               reply_json(req, res,
-                          {{"status", "ok"},
-                           {"version", std::string(splat::version())},
-                           {"git_commit", std::string(splat::git_commit())},
-                           {"store_schema_version", store.schema_version()},
-                           {"running_campaign", running ? json(*running) : json(nullptr)},
-                           {"waiting_campaigns", runner.waiting()}});
-             }));
-    http.Get(p + "/metrics", guarded([this](const httplib::Request&, httplib::Response& res) {
-               res.set_content(metrics_text(), "text/plain; version=0.0.4; charset=utf-8");
-             }));
-    http.Get(p + "/materials", guarded([](const httplib::Request& req, httplib::Response& res) {
-               json list = json::array();
-               for (const std::string& n : splat::material_names()) {
-                 list.push_back({{"name", n}, {"document", splat::material_document(n)}});
-               }
-               reply_json(req, res, {{"materials", list}});
-             }));
-    http.Get(
-        p + R"(/schemas/([A-Za-z0-9_.-]+))",
+    get(p + "/health", guarded([this](const httplib::Request& req, httplib::Response& res) {
+          const auto running = runner.running();
+          reply_json(req, res,
+                     {{"status", "ok"},
+                      {"version", std::string(splat::version())},
+                      {"git_commit", std::string(splat::git_commit())},
+                      {"store_schema_version", store.schema_version()},
+                      {"running_campaign", running ? json(*running) : json(nullptr)},
+                      {"waiting_campaigns", runner.waiting()}});
+        }));
+    get(p + "/metrics", guarded([this](const httplib::Request&, httplib::Response& res) {
+          res.set_content(metrics_text(), "text/plain; version=0.0.4; charset=utf-8");
+        }));
+    get(p + "/materials", guarded([](const httplib::Request& req, httplib::Response& res) {
+          json list = json::array();
+          for (const std::string& n : splat::material_names()) {
+            list.push_back({{"name", n}, {"document", splat::material_document(n)}});
+          }
+          reply_json(req, res, {{"materials", list}});
+        }));
+    get(p + R"(/schemas/([A-Za-z0-9_.-]+))",
         guarded([](const httplib::Request& req, httplib::Response& res) {
           std::string name = req.matches[1];
           for (const char* suffix : {".schema.json", ".json"}) {
@@ -458,39 +489,39 @@ struct Server::Impl {
           }
           reply_json(req, res, splat::schema_document(name));
         }));
-    http.Post(p + "/campaigns", guarded([this](const httplib::Request& req,
-                                               httplib::Response& res) { submit(req, res); }));
-    http.Get(p + "/campaigns", guarded([this](const httplib::Request& req, httplib::Response& res) {
-               const int size = page_size_of(req, o);
-               const std::int64_t before = page_token_of(req, 'b');
-               const auto page = campaign::campaigns_page(store, before, size + 1);
-               json list = json::array();
-               for (std::size_t i = 0; i < page.size() && i < std::size_t(size); ++i) {
-                 list.push_back(campaign_doc(page[i], false));
-               }
-               json next = nullptr;
-               if (page.size() > std::size_t(size))
-                 next = "b" + std::to_string(page[std::size_t(size) - 1].id);
-               reply_json(req, res, {{"campaigns", list}, {"next_page_token", next}});
-             }));
-    http.Get(p + R"(/campaigns/([0-9]+))",
-             guarded([this](const httplib::Request& req, httplib::Response& res) {
-               reply_json(req, res, campaign_doc(campaign_or_404(path_id(req)), true));
-             }));
-    http.Post(p + R"(/campaigns/([0-9]+)/cancel)",
-              guarded([this](const httplib::Request& req, httplib::Response& res) {
-                const std::int64_t id = path_id(req);
-                campaign_or_404(id);
-                const CancelResult r = runner.cancel(id);
-                if (r == CancelResult::unknown) fail(404, "not-found", "Not Found", "no campaign");
-                if (r == CancelResult::already_ended) {
-                  fail(409, "campaign-finished", "Campaign already finished",
-                       "campaign " + std::to_string(id) + " has finished; nothing to cancel");
-                }
-                reply_json(req, res, campaign_doc(campaign_or_404(id), false), 202);
-              }));
-    http.Get(
-        p + R"(/campaigns/([0-9]+)/jobs)",
+    post(p + "/campaigns", guarded([this](const httplib::Request& req, httplib::Response& res) {
+           submit(req, res);
+         }));
+    get(p + "/campaigns", guarded([this](const httplib::Request& req, httplib::Response& res) {
+          const int size = page_size_of(req, o);
+          const std::int64_t before = page_token_of(req, 'b');
+          const auto page = campaign::campaigns_page(store, before, size + 1);
+          json list = json::array();
+          for (std::size_t i = 0; i < page.size() && i < std::size_t(size); ++i) {
+            list.push_back(campaign_doc(page[i], false));
+          }
+          json next = nullptr;
+          if (page.size() > std::size_t(size))
+            next = "b" + std::to_string(page[std::size_t(size) - 1].id);
+          reply_json(req, res, {{"campaigns", list}, {"next_page_token", next}});
+        }));
+    get(p + R"(/campaigns/([0-9]+))",
+        guarded([this](const httplib::Request& req, httplib::Response& res) {
+          reply_json(req, res, campaign_doc(campaign_or_404(path_id(req)), true));
+        }));
+    post(p + R"(/campaigns/([0-9]+)/cancel)",
+         guarded([this](const httplib::Request& req, httplib::Response& res) {
+           const std::int64_t id = path_id(req);
+           campaign_or_404(id);
+           const CancelResult r = runner.cancel(id);
+           if (r == CancelResult::unknown) fail(404, "not-found", "Not Found", "no campaign");
+           if (r == CancelResult::already_ended) {
+             fail(409, "campaign-finished", "Campaign already finished",
+                  "campaign " + std::to_string(id) + " has finished; nothing to cancel");
+           }
+           reply_json(req, res, campaign_doc(campaign_or_404(id), false), 202);
+         }));
+    get(p + R"(/campaigns/([0-9]+)/jobs)",
         guarded([this](const httplib::Request& req, httplib::Response& res) {
           const std::int64_t id = path_id(req);
           campaign_or_404(id);
@@ -517,30 +548,32 @@ struct Server::Impl {
           if (rows.size() > std::size_t(size)) next = "o" + std::to_string(offset + size);
           reply_json(req, res, {{"campaign_id", id}, {"jobs", list}, {"next_page_token", next}});
         }));
-    http.Get(p + R"(/campaigns/([0-9]+)/windows)",
-             guarded([this](const httplib::Request& req, httplib::Response& res) {
-               const std::int64_t id = path_id(req);
-               campaign_or_404(id);
-               reply_windows(req, res, store.windows(id), {{"campaign_id", id}});
-             }));
-    http.Get(p + "/windows", guarded([this](const httplib::Request& req, httplib::Response& res) {
-               std::vector<campaign::WindowRecord> all;
-               json ids = json::array();
-               for (const campaign::CampaignRecord& c : store.campaigns()) {
-                 if (!matches_filters(req, c)) continue;
-                 ids.push_back(c.id);
-                 for (auto& w : store.windows(c.id)) all.push_back(std::move(w));
-               }
-               reply_windows(req, res, all, {{"campaign_ids", ids}});
-             }));
-    http.Get(p + R"(/jobs/([0-9a-f]{64}))",
-             guarded([this](const httplib::Request& req, httplib::Response& res) {
-               reply_json(req, res, job_doc(req.matches[1]));
-             }));
-    http.Get(p + R"(/jobs/([0-9a-f]{64})/result\.h5)",
-             guarded([this](const httplib::Request& req, httplib::Response& res) {
-               send_result_file(req, res);
-             }));
+    get(p + R"(/campaigns/([0-9]+)/windows)",
+        guarded([this](const httplib::Request& req, httplib::Response& res) {
+          const std::int64_t id = path_id(req);
+          campaign_or_404(id);
+          reply_windows(req, res, store.windows(id), {{"campaign_id", id}});
+        }));
+    get(p + "/windows", guarded([this](const httplib::Request& req, httplib::Response& res) {
+          std::vector<campaign::WindowRecord> all;
+          json ids = json::array();
+          for (const campaign::CampaignRecord& c : store.campaigns()) {
+            if (!matches_filters(req, c)) continue;
+            ids.push_back(c.id);
+            for (auto& w : store.windows(c.id)) all.push_back(std::move(w));
+          }
+          reply_windows(req, res, all, {{"campaign_ids", ids}});
+        }));
+    get(p + R"(/jobs/([0-9a-f]{64}))",
+        guarded([this](const httplib::Request& req, httplib::Response& res) {
+          reply_json(req, res, job_doc(req.matches[1]));
+        }));
+    get(p + R"(/jobs/([0-9a-f]{64})/result\.h5)",
+        guarded([this](const httplib::Request& req, httplib::Response& res) {
+          send_result_file(req, res);
+        }));
+
+    refuse_other_methods();
 
     if (!o.web_dir.empty()) http.set_mount_point("/", o.web_dir.string());
     if (!o.vendor_dir.empty()) {
@@ -730,19 +763,18 @@ struct Server::Impl {
            "Idempotency-Key is longer than 255 characters");
     }
     const std::string body_hash = campaign::sha256_hex(campaign::canonical_text(doc));
-    std::unique_lock lock(idempotency_mutex, std::defer_lock);
+    const auto replay = [&](std::int64_t id) {
+      res.set_header("Location", std::string(k_prefix) + "/campaigns/" + std::to_string(id));
+      res.set_header("Idempotent-Replayed", "true");
+      reply_json(req, res, campaign_doc(campaign_or_404(id), true), 202);
+    };
+    std::optional<campaign::SubmissionKey> submission;
     if (!key.empty()) {
-      lock.lock();
-      const auto it = idempotency.find(key);
-      if (it != idempotency.end()) {
-        if (it->second.body_hash != body_hash) {
-          fail(422, "idempotency-key-reused", "Idempotency-Key reused",
-               "this Idempotency-Key was used with a different body");
-        }
-        res.set_header("Location", std::string(k_prefix) + "/campaigns/" +
-                                       std::to_string(it->second.campaign_id));
-        res.set_header("Idempotent-Replayed", "true");
-        reply_json(req, res, campaign_doc(campaign_or_404(it->second.campaign_id), true), 202);
+      submission = campaign::SubmissionKey{key, body_hash};
+      // A retry of a submission already stored: no need to check it again.
+      if (const auto known = store.submission(key)) {
+        if (known->body_hash != body_hash) key_reused();
+        replay(known->campaign_id);
         return;
       }
     }
@@ -757,22 +789,24 @@ struct Server::Impl {
     rec.tags = json(spec.tags).dump();
     rec.executor = spec.executor == campaign::ExecutorKind::slurm ? "slurm" : "local";
     rec.priority = spec.priority;
-    const std::int64_t id = store.open_campaign(rec);
     std::vector<campaign::NewPoint> pts;
     for (const campaign::ExpandedJob& j : jobs) {
       pts.push_back({{j.params_key, j.params_key, j.velocity, j.hash, "grid"},
                      campaign::canonical_text(j.scene),
                      version});
     }
-    store.add_points(id, pts, false);
-    if (!key.empty()) {
-      // Bounded memory: the oldest keys are forgotten first.
-      if (idempotency_order.size() >= k_max_idempotency_keys) {
-        idempotency.erase(idempotency_order.front());
-        idempotency_order.pop_front();
-      }
-      idempotency[key] = {body_hash, id};
-      idempotency_order.push_back(key);
+    // The campaign, its points and the key in one transaction (a concurrent
+    // request with the same key is settled there).
+    campaign::OpenedCampaign opened;
+    try {
+      opened = store.open_campaign(rec, pts, false, submission);
+    } catch (const campaign::SubmissionKeyReused&) {
+      key_reused();
+    }
+    const std::int64_t id = opened.id;
+    if (opened.replayed) {
+      replay(id);
+      return;
     }
     if (o.run_campaigns) runner.submit(id);
     res.set_header("Location", std::string(k_prefix) + "/campaigns/" + std::to_string(id));

@@ -170,8 +170,6 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   rec.tags = json(spec.tags).dump();
   rec.executor = spec.executor == ExecutorKind::slurm ? "slurm" : "local";
   rec.priority = spec.priority;
-  const std::int64_t cid = store.open_campaign(rec);
-  report.campaign_id = cid;
 
   auto to_new_points = [&](const std::vector<ExpandedJob>& jobs, const char* origin) {
     std::vector<NewPoint> pts;
@@ -182,8 +180,12 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     }
     return pts;
   };
-  report.grid =
-      store.add_points(cid, to_new_points(expand(spec, resolve, version), "grid"), options.rerun);
+  // The campaign and its grid in one transaction.
+  const OpenedCampaign opened = store.open_campaign(
+      rec, to_new_points(expand(spec, resolve, version), "grid"), options.rerun);
+  const std::int64_t cid = opened.id;
+  report.campaign_id = cid;
+  report.grid = opened.points;
   report.orphans_requeued = store.recover_orphaned_jobs(host);
 
   // Worker slots: the dispatcher (this thread) claims jobs and hands them

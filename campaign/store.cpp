@@ -76,6 +76,14 @@ CREATE TABLE windows (
   PRIMARY KEY (campaign_id, params_key)
 );
 )sql",
+    R"sql(
+CREATE TABLE submissions (
+  key         TEXT PRIMARY KEY,
+  body_hash   TEXT NOT NULL,
+  campaign_id INTEGER NOT NULL REFERENCES campaigns (id) ON DELETE CASCADE,
+  created_at  REAL NOT NULL
+);
+)sql",
 };
 static_assert(std::size(k_migrations) == k_store_schema_version);
 
@@ -270,103 +278,150 @@ Database& Store::reader() {
   return *slot;
 }
 
+namespace {
+
+std::int64_t open_campaign_in(Database& db, const CampaignRecord& c) {
+  Statement find = db.prepare("SELECT id FROM campaigns WHERE spec_hash = ?");
+  find.bind(1, c.spec_hash);
+  if (find.step()) {
+    const std::int64_t id = find.int64(0);
+    db.prepare(
+          "UPDATE campaigns SET state = 'active', finished_at = NULL, priority = ? WHERE id = ?")
+        .bind(1, c.priority)
+        .bind(2, id)
+        .run();
+    return id;
+  }
+  db.prepare(
+        "INSERT INTO campaigns (name, spec_hash, spec, tags, executor, priority, state, "
+        "created_at) VALUES (?, ?, ?, ?, ?, ?, 'active', ?)")
+      .bind(1, c.name)
+      .bind(2, c.spec_hash)
+      .bind(3, c.spec)
+      .bind(4, c.tags.empty() ? std::string("[]") : c.tags)
+      .bind(5, c.executor)
+      .bind(6, c.priority)
+      .bind(7, unix_now())
+      .run();
+  return db.last_insert_rowid();
+}
+
+AddPointsStats add_points_in(Database& db, std::int64_t campaign_id,
+                             const std::vector<NewPoint>& points, bool rerun) {
+  AddPointsStats stats;
+  Statement prio = db.prepare("SELECT priority FROM campaigns WHERE id = ?");
+  prio.bind(1, campaign_id);
+  if (!prio.step()) throw std::invalid_argument("no campaign " + std::to_string(campaign_id));
+  const int priority = static_cast<int>(prio.int64(0));
+  Statement has_point = db.prepare(
+      "SELECT 1 FROM campaign_points WHERE campaign_id = ? AND params_key = ? AND velocity = ?");
+  Statement job_state = db.prepare("SELECT state FROM jobs WHERE hash = ?");
+  Statement insert_job = db.prepare(
+      "INSERT INTO jobs (hash, scene, solver_version, state, priority, created_at) "
+      "VALUES (?, ?, ?, 'queued', ?, ?)");
+  Statement requeue = db.prepare(
+      "UPDATE jobs SET state = 'queued', attempts = 0, exit_reason = ?, owner = '', "
+      "priority = MAX(priority, ?) WHERE hash = ?");
+  Statement drop_result = db.prepare("DELETE FROM results WHERE job_hash = ?");
+  Statement insert_point = db.prepare(
+      "INSERT INTO campaign_points (campaign_id, params_key, params, velocity, job_hash, "
+      "origin) VALUES (?, ?, ?, ?, ?, ?)");
+  const double now = unix_now();
+  for (const NewPoint& np : points) {
+    const CampaignPoint& p = np.point;
+    has_point.reset();
+    has_point.bind(1, campaign_id).bind(2, p.params_key).bind(3, p.velocity);
+    const bool linked = has_point.step();
+    job_state.reset();
+    job_state.bind(1, p.job_hash);
+    if (!job_state.step()) {
+      insert_job.reset();
+      insert_job.bind(1, p.job_hash)
+          .bind(2, np.scene)
+          .bind(3, np.solver_version)
+          .bind(4, priority)
+          .bind(5, now)
+          .run();
+      ++stats.jobs_created;
+    } else {
+      const JobState st = job_state_from_string(job_state.text(0));
+      const bool again = (rerun && is_terminal(st)) || st == JobState::cancelled;
+      if (again) {
+        drop_result.reset();
+        drop_result.bind(1, p.job_hash).run();
+        requeue.reset();
+        requeue.bind(1, rerun ? "rerun requested" : "requeued after cancellation")
+            .bind(2, priority)
+            .bind(3, p.job_hash)
+            .run();
+        ++stats.jobs_requeued;
+      } else if (!linked) {
+        ++stats.jobs_reused;
+      }
+    }
+    if (!linked) {
+      insert_point.reset();
+      insert_point.bind(1, campaign_id)
+          .bind(2, p.params_key)
+          .bind(3, p.params)
+          .bind(4, p.velocity)
+          .bind(5, p.job_hash)
+          .bind(6, p.origin)
+          .run();
+      ++stats.points_added;
+    }
+  }
+  return stats;
+}
+
+}  // namespace
+
 std::int64_t Store::open_campaign(const CampaignRecord& c) {
   std::int64_t id = 0;
-  write([&](Database& db) {
-    Statement find = db.prepare("SELECT id FROM campaigns WHERE spec_hash = ?");
-    find.bind(1, c.spec_hash);
-    if (find.step()) {
-      id = find.int64(0);
-      db.prepare(
-            "UPDATE campaigns SET state = 'active', finished_at = NULL, priority = ? WHERE id = ?")
-          .bind(1, c.priority)
-          .bind(2, id)
-          .run();
-      return;
-    }
-    db.prepare(
-          "INSERT INTO campaigns (name, spec_hash, spec, tags, executor, priority, state, "
-          "created_at) VALUES (?, ?, ?, ?, ?, ?, 'active', ?)")
-        .bind(1, c.name)
-        .bind(2, c.spec_hash)
-        .bind(3, c.spec)
-        .bind(4, c.tags.empty() ? std::string("[]") : c.tags)
-        .bind(5, c.executor)
-        .bind(6, c.priority)
-        .bind(7, unix_now())
-        .run();
-    id = db.last_insert_rowid();
-  });
+  write([&](Database& db) { id = open_campaign_in(db, c); });
   return id;
+}
+
+OpenedCampaign Store::open_campaign(const CampaignRecord& c, const std::vector<NewPoint>& points,
+                                    bool rerun, const std::optional<SubmissionKey>& key) {
+  OpenedCampaign out;
+  write([&](Database& db) {
+    if (key) {
+      Statement known = db.prepare(
+          "SELECT body_hash, campaign_id FROM submissions WHERE key = ? AND "
+          "created_at >= ?");
+      known.bind(1, key->key).bind(2, unix_now() - k_submission_key_seconds);
+      if (known.step()) {
+        if (known.text(0) != key->body_hash) throw SubmissionKeyReused(key->key);
+        out.id = known.int64(1);
+        out.replayed = true;
+        return;
+      }
+    }
+    out.id = open_campaign_in(db, c);
+    out.points = add_points_in(db, out.id, points, rerun);
+    if (key) {
+      const double now = unix_now();
+      db.prepare("DELETE FROM submissions WHERE created_at < ? OR key = ?")
+          .bind(1, now - k_submission_key_seconds)
+          .bind(2, key->key)
+          .run();
+      db.prepare(
+            "INSERT INTO submissions (key, body_hash, campaign_id, created_at) VALUES (?, ?, ?, ?)")
+          .bind(1, key->key)
+          .bind(2, key->body_hash)
+          .bind(3, out.id)
+          .bind(4, now)
+          .run();
+    }
+  });
+  return out;
 }
 
 AddPointsStats Store::add_points(std::int64_t campaign_id, const std::vector<NewPoint>& points,
                                  bool rerun) {
   AddPointsStats stats;
-  write([&](Database& db) {
-    Statement prio = db.prepare("SELECT priority FROM campaigns WHERE id = ?");
-    prio.bind(1, campaign_id);
-    if (!prio.step()) throw std::invalid_argument("no campaign " + std::to_string(campaign_id));
-    const int priority = static_cast<int>(prio.int64(0));
-    Statement has_point = db.prepare(
-        "SELECT 1 FROM campaign_points WHERE campaign_id = ? AND params_key = ? AND velocity = ?");
-    Statement job_state = db.prepare("SELECT state FROM jobs WHERE hash = ?");
-    Statement insert_job = db.prepare(
-        "INSERT INTO jobs (hash, scene, solver_version, state, priority, created_at) "
-        "VALUES (?, ?, ?, 'queued', ?, ?)");
-    Statement requeue = db.prepare(
-        "UPDATE jobs SET state = 'queued', attempts = 0, exit_reason = ?, owner = '', "
-        "priority = MAX(priority, ?) WHERE hash = ?");
-    Statement drop_result = db.prepare("DELETE FROM results WHERE job_hash = ?");
-    Statement insert_point = db.prepare(
-        "INSERT INTO campaign_points (campaign_id, params_key, params, velocity, job_hash, "
-        "origin) VALUES (?, ?, ?, ?, ?, ?)");
-    const double now = unix_now();
-    for (const NewPoint& np : points) {
-      const CampaignPoint& p = np.point;
-      has_point.reset();
-      has_point.bind(1, campaign_id).bind(2, p.params_key).bind(3, p.velocity);
-      const bool linked = has_point.step();
-      job_state.reset();
-      job_state.bind(1, p.job_hash);
-      if (!job_state.step()) {
-        insert_job.reset();
-        insert_job.bind(1, p.job_hash)
-            .bind(2, np.scene)
-            .bind(3, np.solver_version)
-            .bind(4, priority)
-            .bind(5, now)
-            .run();
-        ++stats.jobs_created;
-      } else {
-        const JobState st = job_state_from_string(job_state.text(0));
-        const bool again = (rerun && is_terminal(st)) || st == JobState::cancelled;
-        if (again) {
-          drop_result.reset();
-          drop_result.bind(1, p.job_hash).run();
-          requeue.reset();
-          requeue.bind(1, rerun ? "rerun requested" : "requeued after cancellation")
-              .bind(2, priority)
-              .bind(3, p.job_hash)
-              .run();
-          ++stats.jobs_requeued;
-        } else if (!linked) {
-          ++stats.jobs_reused;
-        }
-      }
-      if (!linked) {
-        insert_point.reset();
-        insert_point.bind(1, campaign_id)
-            .bind(2, p.params_key)
-            .bind(3, p.params)
-            .bind(4, p.velocity)
-            .bind(5, p.job_hash)
-            .bind(6, p.origin)
-            .run();
-        ++stats.points_added;
-      }
-    }
-  });
+  write([&](Database& db) { stats = add_points_in(db, campaign_id, points, rerun); });
   return stats;
 }
 
@@ -545,6 +600,14 @@ std::optional<ResultRecord> Store::result(const std::string& job_hash) {
   s.bind(1, job_hash);
   if (!s.step()) return std::nullopt;
   return ResultRecord{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5)};
+}
+
+std::optional<Submission> Store::submission(const std::string& key) {
+  Statement s = reader().prepare(
+      "SELECT body_hash, campaign_id FROM submissions WHERE key = ? AND created_at >= ?");
+  s.bind(1, key).bind(2, unix_now() - k_submission_key_seconds);
+  if (!s.step()) return std::nullopt;
+  return Submission{s.text(0), s.int64(1)};
 }
 
 std::vector<PointStatus> Store::points(std::int64_t campaign_id) {

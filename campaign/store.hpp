@@ -21,6 +21,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -30,7 +31,10 @@
 namespace splat::campaign {
 
 // Current schema version of the file (PRAGMA user_version).
-inline constexpr int k_store_schema_version = 1;
+inline constexpr int k_store_schema_version = 2;
+
+// How long a submission key (the API's Idempotency-Key) is remembered, s.
+inline constexpr double k_submission_key_seconds = 24.0 * 3600.0;
 
 enum class JobState { queued, running, succeeded, failed, cancelled, timed_out };
 const char* to_string(JobState s);
@@ -131,6 +135,30 @@ struct NewPoint {
   std::string solver_version;
 };
 
+// A submission's idempotency key and the hash of the body first sent with it.
+struct SubmissionKey {
+  std::string key;
+  std::string body_hash;
+};
+
+// The key was already used, within k_submission_key_seconds, with another body.
+class SubmissionKeyReused : public std::runtime_error {
+ public:
+  explicit SubmissionKeyReused(const std::string& key)
+      : std::runtime_error("submission key '" + key + "' was used with a different body") {}
+};
+
+struct Submission {
+  std::string body_hash;
+  std::int64_t campaign_id = 0;
+};
+
+struct OpenedCampaign {
+  std::int64_t id = 0;
+  AddPointsStats points;  // empty when replayed
+  bool replayed = false;  // the key was known: nothing was written
+};
+
 class Store {
  public:
   // Opens or creates the file, applies pending migrations, starts the writer.
@@ -146,6 +174,13 @@ class Store {
   // Finds the campaign with this spec hash or creates it; returns its id.
   // An existing campaign that was cancelled or finished becomes active again.
   std::int64_t open_campaign(const CampaignRecord& c);
+  // open_campaign and add_points in one transaction: a failure stores neither.
+  // With a key, the key is recorded in the same transaction; a key recorded
+  // with the same body hash returns its campaign and writes nothing
+  // (`replayed`), one recorded with another body hash throws
+  // SubmissionKeyReused. Keys older than k_submission_key_seconds are dropped.
+  OpenedCampaign open_campaign(const CampaignRecord& c, const std::vector<NewPoint>& points,
+                               bool rerun, const std::optional<SubmissionKey>& key = {});
   // Links the points to the campaign, creating missing jobs (queued). Points
   // already linked are left alone. Existing jobs are reused; they are put back
   // in the queue when `rerun` is set (their results are dropped) or when they
@@ -178,6 +213,9 @@ class Store {
   std::vector<CampaignRecord> campaigns();
   std::optional<JobRecord> job(const std::string& hash);
   std::optional<ResultRecord> result(const std::string& job_hash);
+  // The campaign a submission key opened, and its body hash (keys older than
+  // k_submission_key_seconds are forgotten).
+  std::optional<Submission> submission(const std::string& key);
   std::vector<PointStatus> points(std::int64_t campaign_id);
   JobCounts job_counts(std::int64_t campaign_id);
   int refinement_points_count(std::int64_t campaign_id);

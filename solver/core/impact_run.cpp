@@ -23,11 +23,23 @@ std::string format_reason(const char* fmt, double a, double b) {
   return buf;
 }
 
+// Scene index of the body named `name` (FE or SPH), -1 if none.
 int body_index(const Model& model, const std::string& name) {
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    if (model.bodies[b].name == name) return static_cast<int>(b);
+  for (std::size_t b = 0; b < model.body_refs.size(); ++b) {
+    const BodyRef& r = model.body_refs[b];
+    const std::string& n = r.sph ? model.sph_bodies[r.index].name : model.bodies[r.index].name;
+    if (n == name) return static_cast<int>(b);
   }
   return -1;
+}
+
+// Node (particle) range of scene body b.
+struct NodeRange {
+  std::size_t begin = 0, end = 0;
+};
+NodeRange nodes_of(const Model& model, int b) {
+  return {body_node_begin(model, static_cast<std::size_t>(b)),
+          body_node_end(model, static_cast<std::size_t>(b))};
 }
 
 // P-wave speed of the undamaged material, m/s.
@@ -50,10 +62,10 @@ struct BodyMotion {
 BodyMotion motion(const Model& model, int b) {
   BodyMotion out;
   if (b < 0) return out;
-  const FeBody& body = model.bodies[b];
+  const NodeRange body = nodes_of(model, b);
   const NodeSet& n = model.nodes;
   Vec3 momentum = Vec3::Zero();
-  for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+  for (std::size_t i = body.begin; i < body.end; ++i) {
     if (n.mass[i] <= 0.0) continue;
     out.mass += n.mass[i];
     momentum += n.mass[i] * n.v[i];
@@ -82,13 +94,18 @@ ImpactRun::ImpactRun(const ImpactSpec& spec, const Model& model, double max_time
   }
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   if (particle_ >= 0) {
-    const FeBody& p = model.bodies[particle_];
-    for (std::size_t i = p.node_begin; i < p.node_end; ++i) {
+    const BodyRef& ref = model.body_refs[particle_];
+    const NodeRange p = nodes_of(model, particle_);
+    for (std::size_t i = p.begin; i < p.end; ++i) {
       lo = std::min(lo, height(model, model.nodes.x0[i]));
       hi = std::max(hi, height(model, model.nodes.x0[i]));
     }
-    radius_ = 0.5 * (hi - lo);
-    settings_.hold_time = k_hold_transits * radius_ / p_wave_speed(p.material);
+    // SPH: particle centres lie half a spacing inside the surface.
+    half_spacing_ = ref.sph ? 0.5 * model.sph_bodies[ref.index].spacing : 0.0;
+    radius_ = 0.5 * (hi - lo) + half_spacing_;
+    const Material& material =
+        ref.sph ? model.sph_bodies[ref.index].material : model.bodies[ref.index].material;
+    settings_.hold_time = k_hold_transits * radius_ / p_wave_speed(material);
   }
   settings_.impact_speed = spec.velocity;
   monitor_ = ImpactMonitor(settings_);
@@ -109,9 +126,10 @@ ImpactSample ImpactRun::sample(double time, const Model& model) const {
     s.pairs_in_contact = st.in_contact;
     s.bonded_area = links_hold_ ? st.bonded_area : 0.0;
   } else if (particle_ >= 0) {
-    const FeBody& body = model.bodies[particle_];
-    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
-      if (model.nodes.mass[i] > 0.0 && height(model, model.nodes.x[i]) <= k_wall_touch * radius_)
+    const NodeRange body = nodes_of(model, particle_);
+    for (std::size_t i = body.begin; i < body.end; ++i) {
+      if (model.nodes.mass[i] > 0.0 &&
+          height(model, model.nodes.x[i]) <= half_spacing_ + k_wall_touch * radius_)
         ++s.pairs_in_contact;
     }
   }
@@ -146,12 +164,18 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
 
   // Shape of the particle: lateral radius about its axis and lowest point.
   if (particle_ >= 0) {
-    const FeBody& body = model.bodies[particle_];
+    const NodeRange body = nodes_of(model, particle_);
     const NodeSet& n = model.nodes;
-    const bool full_3d = !model.axisymmetric && spec_.model == "fe-3d-full";
+    // Full 3D models (fe-3d-full, sph-3d-full, sph-on-fe-3d-full): lateral
+    // radius about the particle's axis through its centre of mass; quarter
+    // and axisymmetric models: about the z axis.
+    const std::string full_suffix = "3d-full";
+    const bool full_3d = !model.axisymmetric && spec_.model.size() >= full_suffix.size() &&
+                         spec_.model.compare(spec_.model.size() - full_suffix.size(),
+                                             full_suffix.size(), full_suffix) == 0;
     double cx = 0.0, cy = 0.0, m = 0.0;
     if (full_3d) {
-      for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+      for (std::size_t i = body.begin; i < body.end; ++i) {
         cx += n.mass[i] * n.x[i].x();
         cy += n.mass[i] * n.x[i].y();
         m += n.mass[i];
@@ -159,15 +183,15 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
       if (m > 0.0) cx /= m, cy /= m;
     }
     double r_max = 0.0, z_min = std::numeric_limits<double>::infinity();
-    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+    for (std::size_t i = body.begin; i < body.end; ++i) {
       if (n.mass[i] <= 0.0) continue;
       const double lateral =
           model.axisymmetric ? n.x[i].x() : std::hypot(n.x[i].x() - cx, n.x[i].y() - cy);
       r_max = std::max(r_max, lateral);
       z_min = std::min(z_min, height(model, n.x[i]));
     }
-    r.flattening_ratio = radius_ > 0.0 ? r_max / radius_ : 0.0;
-    r.penetration_depth = std::isfinite(z_min) ? std::max(0.0, -z_min) : 0.0;
+    r.flattening_ratio = radius_ > 0.0 ? (r_max + half_spacing_) / radius_ : 0.0;
+    r.penetration_depth = std::isfinite(z_min) ? std::max(0.0, half_spacing_ - z_min) : 0.0;
   }
   for (const BodySummary& b : s.bodies) {
     r.max_temperature = std::max(r.max_temperature, b.max_temperature);
@@ -200,10 +224,10 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
       r.max_links_active > 0 && static_cast<double>(r.links_active) >
                                     k_thesis_fraction * static_cast<double>(r.max_links_active);
 
-  // Share of the particle's mass eroded.
+  // Share of the particle's mass eroded (SPH particles are never deleted).
   double eroded_fraction = 0.0;
-  if (particle_ >= 0) {
-    const FeBody& body = model.bodies[particle_];
+  if (particle_ >= 0 && !model.body_refs[particle_].sph) {
+    const FeBody& body = model.bodies[model.body_refs[particle_].index];
     double total = 0.0, gone = 0.0;
     for (std::size_t e = 0; e < body.num_elements(); ++e) {
       total += body.element_mass[e];

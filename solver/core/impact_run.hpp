@@ -69,11 +69,12 @@ class ImpactRun {
   VerdictSettings settings_;
   ImpactMonitor monitor_;
   double max_time_ = 0.0;
-  int particle_ = -1;        // body index
-  int substrate_ = -1;       // body index, -1: rigid wall
+  int particle_ = -1;        // scene body index (model.body_refs), FE or SPH
+  int substrate_ = -1;       // scene body index, -1: rigid wall
   int contact_ = -1;         // contact interface index, -1: rigid wall
   bool links_hold_ = false;  // the interface has adhesion with G_c > 0
   double radius_ = 0.0;
+  double half_spacing_ = 0.0;      // SPH particle: its pinball radius, added to extents, m
   double initial_kinetic_ = -1.0;  // J, of the particle at the first sample
   ImpactSample last_;
 };

@@ -22,6 +22,24 @@ constexpr double k_size_velocity = 250.0;        // m/s per extra particle radiu
 constexpr double k_rigid_factor = 3.0;           // substrate yield / particle flow stress for rigid
 constexpr double k_hourglass_coefficient = 0.1;  // stiffness-form hourglass coefficient, -
 constexpr double k_erosion_dt_fraction = 0.05;   // default geometric erosion, of h / c_p, -
+// Fastest impact the FE particle mesh survives with a verdict: README
+// "Robustness" table (Al/Al, 8 and 16 elements across) had stick/rebound up
+// to 500 m/s and only `unstable` from 600 m/s. Since the split-impulse
+// contact, the hourglass fix and damage erosion it gives verdicts up to
+// 800 m/s at 8, 12 and 16 across; the constant has not been moved yet (the
+// SPH rung's tests and tables assume 500). Above it `auto` models the
+// particle with SPH. One constant: move it when the FE table moves.
+constexpr double k_fe_max_velocity = 500.0;  // m/s
+constexpr int k_sph_default_across =
+    5;                             // spacings across R (thesis: 1.25 um SPH radius at R 12.5 um)
+constexpr double k_sph_gap = 0.1;  // initial height of the ball above R, in spacings, -
+// SPH substrate block: half-width and depth R (2.4 + v / 1500 m/s), 2.8 R at
+// 600 m/s (the thesis's 70 x 70 x 35 um block at R 12.5 um), at most 6 R.
+constexpr double k_sph_size_base = 2.4;              // -
+constexpr double k_sph_size_velocity = 1500.0;       // m/s per extra particle radius
+constexpr double k_sph_size_cap = 6.0;               // -
+constexpr double k_sph_energy_balance_limit = 0.15;  // of the initial energy, -
+constexpr double k_sph_max_h_growth = 1.0;           // h / h_0 cap at reference updates, -
 
 [[noreturn]] void fail(const std::string& pointer, const std::string& message) {
   throw InputError({{pointer, message}});
@@ -88,8 +106,6 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   const Material ms =
       resolve(substrate.value("material", particle.at("material")), base + "/substrate/material");
   const double R = particle.at("radius").get<double>();
-  const int n = particle.value("elements_across", 12);
-  const double h = R / n;
   const double v = pi.at("velocity").get<double>();
   const double angle = pi.value("angle", 0.0);  // degrees from the normal
   const bool has_adhesion = pi.contains("adhesion");
@@ -108,6 +124,94 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   const bool erosion = damage && pi.value("erosion", true);
   const std::string fidelity = pi.value("fidelity", "auto");
   const std::string substrate_kind = substrate.value("type", "auto");
+  const std::string particle_disc = particle.value("discretization", "auto");
+  const std::string substrate_disc = substrate.value("discretization", "auto");
+  const double sigma_p = impact_flow_stress(mp);
+
+  ExpandedImpact out;
+  ImpactModelChoice& c = out.choice;
+  std::vector<std::string> reasons;
+
+  // Fidelity.
+  if (fidelity == "auto") {
+    const bool sph_asked = particle_disc == "sph";
+    const bool too_fast = particle_disc == "auto" && v > k_fe_max_velocity;
+    if (sph_asked || too_fast) {
+      // SPH substrate when it is asked for, or when the substrate yields at
+      // least as readily as the particle (its yield stress below the
+      // particle's impact flow stress): it jets too and a mesh would tangle.
+      const bool sph_substrate =
+          substrate_disc == "sph" || (substrate_disc == "auto" && ms.strength.A < sigma_p);
+      const std::string sym = angle != 0.0 ? "full" : "quarter";
+      c.model = (sph_substrate ? "sph-3d-" : "sph-on-fe-3d-") + sym;
+      reasons.push_back(sph_asked ? std::string("SPH particle as asked")
+                                  : "SPH particle: impact velocity " + std::to_string(v) +
+                                        " m/s is above " + std::to_string(k_fe_max_velocity) +
+                                        " m/s, the fastest the FE particle mesh survives "
+                                        "(README robustness table)");
+      reasons.push_back(sph_substrate
+                            ? (substrate_disc == "sph"
+                                   ? std::string("SPH substrate as asked")
+                                   : "SPH substrate: its yield stress " +
+                                         std::to_string(ms.strength.A / 1e6) +
+                                         " MPa is below the particle's flow stress " +
+                                         std::to_string(sigma_p / 1e6) + " MPa, so it jets too")
+                            : "FE substrate");
+      reasons.push_back(angle != 0.0 ? "oblique impact: full 3D"
+                                     : "normal impact: quarter model, two symmetry planes");
+    } else if (angle != 0.0) {
+      c.model = "fe-3d-full";
+      reasons.push_back("oblique impact (angle " + std::to_string(angle) +
+                        " deg): only a full 3D model represents it");
+    } else {
+      c.model = "fe-axisym";
+      reasons.push_back("normal impact: axisymmetric");
+    }
+  } else {
+    c.model = fidelity;
+    reasons.push_back("fidelity " + fidelity + " as asked");
+    const bool full =
+        fidelity == "fe-3d-full" || fidelity == "sph-3d-full" || fidelity == "sph-on-fe-3d-full";
+    if (angle != 0.0 && !full) {
+      fail(base + "/fidelity",
+           "an oblique impact (angle != 0) needs a full 3D fidelity (fe-3d-full, sph-3d-full, "
+           "sph-on-fe-3d-full) or auto, not " +
+               fidelity);
+    }
+  }
+  const bool sph = c.model.rfind("sph-", 0) == 0;
+  const bool sph_substrate = c.model.rfind("sph-3d-", 0) == 0;
+  if (sph && particle_disc == "fe") {
+    fail(base + "/particle/discretization",
+         "is fe, but fidelity " + c.model + " has an SPH particle");
+  }
+  if (!sph && particle_disc == "sph") {
+    fail(base + "/particle/discretization",
+         "is sph, but fidelity " + c.model +
+             " has no SPH particle (use sph-3d-* or sph-on-fe-3d-*)");
+  }
+  if (sph && substrate_disc != "auto" && (substrate_disc == "sph") != sph_substrate) {
+    fail(base + "/substrate/discretization", "is " + substrate_disc + ", but fidelity " + c.model +
+                                                 " has " + (sph_substrate ? "an SPH" : "an FE") +
+                                                 " substrate");
+  }
+  if (!sph && substrate_disc == "sph") {
+    fail(base + "/substrate/discretization", "sph needs an SPH fidelity (sph-3d-* or auto)");
+  }
+
+  // Resolution: FE elements across the radius, or the SPH particle spacing
+  // (spacing, else R / elements_across, default R / 5).
+  if (particle.contains("spacing") && particle.contains("elements_across")) {
+    fail(base + "/particle/spacing", "give spacing or elements_across, not both");
+  }
+  if (particle.contains("spacing") && !sph) {
+    fail(base + "/particle/spacing", "is for SPH particles; FE particles take elements_across");
+  }
+  const int n = particle.value("elements_across", sph ? k_sph_default_across : 12);
+  const double h = sph ? particle.value("spacing", R / n) : R / n;
+  if (sph && !(R / h >= 2.0)) {
+    fail(base + "/particle/spacing", "must be at most R / 2 (m): fewer than 2 spacings across R");
+  }
   // Numerics of both bodies (see the header: stiffness hourglass by default).
   json hourglass = {{"type", "stiffness"}, {"coefficient", k_hourglass_coefficient}};
   if (pi.contains("hourglass")) hourglass.update(pi.at("hourglass"));
@@ -120,32 +224,22 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   const json erosion_block = {{"enabled", erosion || erosion_fraction > 0.0},
                               {"min_time_step", erosion_fraction * h / c_max},
                               {"damage", erosion}};
-
-  ExpandedImpact out;
-  ImpactModelChoice& c = out.choice;
-  std::vector<std::string> reasons;
-
-  // Fidelity.
-  if (fidelity == "auto") {
-    if (angle != 0.0) {
-      c.model = "fe-3d-full";
-      reasons.push_back("oblique impact (angle " + std::to_string(angle) +
-                        " deg): only a full 3D model represents it");
-    } else {
-      c.model = "fe-axisym";
-      reasons.push_back("normal impact: axisymmetric");
-    }
-  } else {
-    c.model = fidelity;
-    reasons.push_back("fidelity " + fidelity + " as asked");
-    if (angle != 0.0 && fidelity != "fe-3d-full") {
-      fail(base + "/fidelity",
-           "an oblique impact (angle != 0) needs fidelity fe-3d-full or auto, not " + fidelity);
-    }
+  // SPH settings of both SPH bodies (the block's `sph`, thesis defaults
+  // otherwise); an explicit `erosion: true` deactivates particles at the
+  // damage cap (they are never deleted; the FE default of eroding failed
+  // elements whenever damage is on is not carried over to SPH). The ball is
+  // HCP, the substrate block cubic unless asked.
+  json sph_settings = pi.value("sph", json::object());
+  if (!sph_settings.contains("deactivate_failed")) {
+    sph_settings["deactivate_failed"] = pi.value("erosion", false);
   }
+  // Smoothing lengths kept at their initial value through reference updates:
+  // with the body default (growth up to 2x) the quarter Al/Al model's time
+  // step collapsed 1000-fold 13 ns into a 1500 m/s impact; with h fixed the
+  // run finished with a verdict (and 1000 m/s settled in 1035 steps, not 3714).
+  if (!sph_settings.contains("max_h_growth")) sph_settings["max_h_growth"] = k_sph_max_h_growth;
 
   // Substrate: deformable or rigid.
-  const double sigma_p = impact_flow_stress(mp);
   if (substrate_kind == "rigid") {
     c.rigid_substrate = true;
     reasons.push_back("rigid substrate as asked");
@@ -181,6 +275,13 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   if (doc.contains("output")) scene["output"] = doc.at("output");
   json time = doc.value("time", json::object());
   time["end_time"] = t_max;
+  // SPH contact lands arriving particles with perfectly inelastic node-level
+  // impacts whose loss is not booked (README "SPH bodies": -6 % at 600 m/s
+  // on the thesis Al/Al model, the full ball at 2.5 um): the balance check
+  // of SPH models allows that much more.
+  if (sph && !time.contains("energy_balance_limit")) {
+    time["energy_balance_limit"] = k_sph_energy_balance_limit;
+  }
   scene["time"] = time;
 
   if (c.model == "two-mass") {
@@ -209,26 +310,54 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   }
 
   const bool axi = c.model == "fe-axisym";
-  const bool quarter = c.model == "fe-3d-quarter";
+  const bool quarter = c.model.size() >= 7 && c.model.substr(c.model.size() - 7) == "quarter";
   const double rad = angle * k_pi / 180.0;
-  const double S = substrate.value("size", std::min(R * (4.0 + v / k_size_velocity), 12.0 * R));
+  // SPH substrate block: a whole number of spacings, so the cubic lattice
+  // keeps the spacing h exactly.
+  const double S_sph =
+      h *
+      std::ceil(std::min(R * (k_sph_size_base + v / k_sph_size_velocity), k_sph_size_cap * R) / h -
+                1e-9);
+  const double S = substrate.value(
+      "size", sph_substrate ? S_sph : std::min(R * (4.0 + v / k_size_velocity), 12.0 * R));
+  if (sph) {
+    reasons.push_back("particle spacing " + std::to_string(h * 1e6) + " um (" +
+                      std::to_string(R / h) + " across R)");
+  }
 
-  json p = {
-      {"name", "particle"},
-      {"material", particle.at("material")},
-      {"geometry", {{"type", "sphere"}, {"radius", R}, {"centre", vec(0, 0, R * (1 + k_gap))}}},
-      {"discretization", {{"type", axi ? "fe-axisym" : "fe-hex"}, {"elements_across", n}}},
-      {"initial",
-       {{"velocity", vec(v * std::sin(rad), 0.0, -v * std::cos(rad))},
-        {"temperature", particle.value("temperature", mp.strength.T_ref)}}},
-      {"switches", switches(damage)},
-      {"hourglass", hourglass},
-      {"artificial_viscosity", viscosity},
-      {"erosion", erosion_block}};
+  json p = {{"name", "particle"},
+            {"material", particle.at("material")},
+            {"initial",
+             {{"velocity", vec(v * std::sin(rad), 0.0, -v * std::cos(rad))},
+              {"temperature", particle.value("temperature", mp.strength.T_ref)}}},
+            {"switches", switches(damage)}};
+  if (sph) {
+    // Ball centre R + 0.1 spacing above the surface (particle centres lie
+    // within R of it; the pinballs, radius h / 2, start just touching).
+    p["geometry"] = {{"type", "sphere"}, {"radius", R}, {"centre", vec(0, 0, R + k_sph_gap * h)}};
+    // Quarter ball on the cubic lattice: its points lie half a spacing off
+    // the cut planes, so the mirrored ghosts continue the lattice. The HCP
+    // lattice is not mirror-symmetric about y = 0 (ghosts 0.58 spacings from
+    // their images): at 600 m/s the time step of the HCP quarter ball
+    // collapsed 1000-fold in 24 ns while the full HCP ball finished.
+    json ball_sph = sph_settings;
+    if (quarter && !ball_sph.contains("lattice")) ball_sph["lattice"] = "cubic";
+    p["discretization"] = {{"type", "sph"}, {"element_size", h}, {"sph", ball_sph}};
+  } else {
+    p["geometry"] = {{"type", "sphere"}, {"radius", R}, {"centre", vec(0, 0, R * (1 + k_gap))}};
+    p["discretization"] = {{"type", axi ? "fe-axisym" : "fe-hex"}, {"elements_across", n}};
+    p["hourglass"] = hourglass;
+    p["artificial_viscosity"] = viscosity;
+    p["erosion"] = erosion_block;
+  }
   if (quarter) p["discretization"]["sector"] = "quarter";
   json bodies = json::array({p});
   json bcs = json::array();
   json interactions = json::array();
+  if (quarter) {
+    for (const char* on : {"x_min", "y_min"})
+      bcs.push_back({{"body", "particle"}, {"on", on}, {"type", "symmetry"}});
+  }
 
   if (c.rigid_substrate) {
     interactions.push_back(
@@ -236,15 +365,20 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   } else {
     json s = {{"name", "substrate"},
               {"material", substrate.value("material", particle.at("material"))},
-              {"discretization",
-               {{"type", axi ? "fe-axisym" : "fe-hex"},
-                {"element_size", h},
-                {"grading", {{"focus", vec(0, 0, 0)}, {"ratio", k_grading_ratio}}}}},
               {"initial", {{"temperature", substrate.value("temperature", ms.strength.T_ref)}}},
-              {"switches", switches(damage)},
-              {"hourglass", hourglass},
-              {"artificial_viscosity", viscosity},
-              {"erosion", erosion_block}};
+              {"switches", switches(damage)}};
+    if (sph_substrate) {
+      json block_sph = sph_settings;
+      if (!block_sph.contains("lattice")) block_sph["lattice"] = "cubic";
+      s["discretization"] = {{"type", "sph"}, {"element_size", h}, {"sph", block_sph}};
+    } else {
+      s["discretization"] = {{"type", axi ? "fe-axisym" : "fe-hex"},
+                             {"element_size", h},
+                             {"grading", {{"focus", vec(0, 0, 0)}, {"ratio", k_grading_ratio}}}};
+      s["hourglass"] = hourglass;
+      s["artificial_viscosity"] = viscosity;
+      s["erosion"] = erosion_block;
+    }
     if (axi) {
       s["geometry"] = {{"type", "rectangle"}, {"r_max", S}, {"z_min", -S}, {"z_max", 0.0}};
       for (const char* on : {"outer", "bottom"})
@@ -253,9 +387,8 @@ ExpandedImpact expand_particle_impact(const json& doc) {
       s["geometry"] = {{"type", "box"}, {"min", vec(0, 0, -S)}, {"max", vec(S, S, 0)}};
       for (const char* on : {"x_max", "y_max", "z_min"})
         bcs.push_back({{"body", "substrate"}, {"on", on}, {"type", "absorbing"}});
-      for (const char* body : {"particle", "substrate"})
-        for (const char* on : {"x_min", "y_min"})
-          bcs.push_back({{"body", body}, {"on", on}, {"type", "symmetry"}});
+      for (const char* on : {"x_min", "y_min"})
+        bcs.push_back({{"body", "substrate"}, {"on", on}, {"type", "symmetry"}});
     } else {
       s["geometry"] = {{"type", "box"}, {"min", vec(-S, -S, -S)}, {"max", vec(S, S, 0)}};
       for (const char* on : {"x_min", "x_max", "y_min", "y_max", "z_min"})

@@ -4,6 +4,16 @@
 // the bodies, boundary conditions, interactions and time control of an ordinary
 // scene, at the fidelity the block asks for or, with `auto`, the cheapest that
 // represents it:
+//   particle discretization sph, or auto and v > 500 m/s (k_fe_max_velocity:
+//   the fastest impact the FE particle mesh survives, README robustness
+//   table)                           -> an SPH particle: sph-3d-* (SPH
+//                                       substrate) when the substrate asks
+//                                       for SPH or its yield stress is below
+//                                       sigma_p (it jets too), else
+//                                       sph-on-fe-3d-* (hex FE substrate);
+//                                       *-quarter for a normal impact (two
+//                                       mirrored-ghost symmetry planes),
+//                                       *-full for an oblique one
 //   angle != 0                       -> fe-3d-full (an oblique impact has one
 //                                       symmetry plane at most)
 //   angle == 0                       -> fe-axisym
@@ -21,6 +31,17 @@
 //             at the impact point equal to the particle's (R / elements_across),
 //             growing by 1.15 per element away from it; absorbing boundaries
 //             on the far faces (outer radius / sides and bottom).
+// SPH levels: particle spacing d = `spacing`, else R / elements_across
+// (default 5: the thesis's 2.5 um spacing, SPH radius 1.25 um, at R 12.5 um,
+// 743 particles in the full ball); ball centre (0, 0, R + 0.1 d); the SPH
+// substrate is a cubic-lattice block of half-width and depth
+// S = R (2.4 + v / 1500 m/s), at most 6 R, rounded up to whole spacings
+// (2.8 R at 600 m/s: the thesis's 70 x 70 x 35 um block), with absorbing
+// layers on the far faces; an FE substrate under an SPH ball is the graded
+// hex block above with element size d at the impact point. The SPH body is
+// always the contact slave (single pass). `sph` settings of the block apply
+// to both SPH bodies (ball HCP, block cubic unless `lattice` is given);
+// `erosion` deactivates SPH particles at the damage cap (never deleted).
 // The default maximum time is 3 max(t_H, min(R / v, 10 t_H)), with t_H the
 // Hertz contact time of the two elastic bodies at v (Johnson 1985, eq. 11.24);
 // the adaptive end-time rule of the impact run stops earlier once the outcome
@@ -33,7 +54,8 @@
 namespace splat {
 
 struct ImpactModelChoice {
-  std::string model;  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full
+  std::string model;  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full, sph-3d-quarter,
+                      // sph-3d-full, sph-on-fe-3d-quarter, sph-on-fe-3d-full
   bool rigid_substrate = false;
   std::string why;  // for people: what was chosen and the reason
 };

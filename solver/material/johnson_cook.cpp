@@ -66,17 +66,21 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
   for (int it = 1; it <= max_iterations; ++it) {
     r.iterations = it;
     const double ep = eps_p + dp;
-    double hard = jc.A, d_hard = 0.0;
+    double hard = jc.A, d_hard = 0.0, dd_hard = 0.0;
     if (ep > 0.0) {
       const double pw = std::exp(jc.n * std::log(ep));  // ep^n: exp and log cost less than pow
+      const double inv_ep = 1.0 / ep;                   // one division, off the exp-log path
       hard += jc.B * pw;
-      d_hard = jc.B * jc.n * pw / ep;
+      d_hard = jc.B * jc.n * pw * inv_ep;
+      dd_hard = (jc.n - 1.0) * d_hard * inv_ep;
     }
-    double rate = 1.0, d_rate = 0.0;
+    double rate = 1.0, d_rate = 0.0, dd_rate = 0.0;
     const double x = dp * inv_ref;
     if (rate_on && x > 1.0) {
       rate += jc.C * std::log(x);
-      d_rate = jc.C / dp;
+      const double inv_dp = 1.0 / dp;
+      d_rate = jc.C * inv_dp;
+      dd_rate = -d_rate * inv_dp;
     }
     r.hard = hard;
     r.rate = rate;
@@ -95,10 +99,55 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
       r.converged = true;
       break;
     }
+    // Halley's step dp - 2 g g' / (2 g'^2 - g g'') (cubic convergence: from
+    // the previous step's rate one step lands within the tolerance where
+    // Newton's needs two), Newton's where the curvature term is not small.
     const double slope = -three_g - scale * (d_hard * rate + hard * d_rate);
-    double next = dp - g / slope;
-    // Bisect when Newton leaves the bracket, stalls, or meets an unbounded slope.
-    if (!(next > lo && next < hi) || next == dp) next = 0.5 * (lo + hi);
+    const double curv = -scale * (dd_hard * rate + 2.0 * d_hard * d_rate + hard * dd_rate);
+    const double gc = g * curv, s2 = 2.0 * slope * slope;
+    double next = std::abs(gc) < 0.5 * s2 ? dp - 2.0 * g * slope / (s2 - gc) : dp - g / slope;
+    // Bisect when the step leaves the bracket, stalls, or meets an unbounded slope.
+    if (!(next > lo && next < hi) || next == dp) {
+      dp = 0.5 * (lo + hi);
+      continue;
+    }
+    // A step tiny relative to eps_p + dp (and to dp, with the rate term on,
+    // which stays on the same side of the reference rate) lands where the
+    // third-order Taylor expansions of A + B eps^n and 1 + C ln(x) are exact
+    // to rounding: their truncation errors relative to hard rate are below
+    //   trunc = (n + 3)^4 |step / ep|^4 + |C| |step / dp|^4
+    // (fourth derivatives B |n (n-1) (n-2) (n-3)| ep^(n-4) <= hard (n + 3)^4 /
+    // ep^4 and 6 |C| / dp^4, rate >= 1; generous by a factor of 4 and more,
+    // which covers the derivatives' change over the step). Where that
+    // is below 1e-14 and the expanded residual plus it is within the
+    // tolerance, the step ends the iteration with the expanded terms: no
+    // further exp and log, and the terms handed back (and cached by
+    // update_point) are those of the law at the returned dp to 1e-14.
+    const double step = next - dp;
+    const double rel_h = std::abs(step) / ep;
+    const bool rate_side = !rate_on || ((x > 1.0) == (next * inv_ref > 1.0));
+    const double rel_r = rate_on && x > 1.0 ? std::abs(step) / dp : 0.0;
+    const double n3 = (jc.n + 3.0) * (jc.n + 3.0), h2 = rel_h * rel_h, r2 = rel_r * rel_r;
+    const double trunc = n3 * n3 * h2 * h2 + std::abs(jc.C) * r2 * r2;
+    if (rate_side && trunc <= 1e-14) {
+      // Third derivatives: (n - 2) dd_hard / ep and -2 dd_rate / dp.
+      const double d3_hard = ep > 0.0 ? (jc.n - 2.0) * dd_hard / ep : 0.0;
+      const double d3_rate = rel_r > 0.0 ? -2.0 * dd_rate / dp : 0.0;
+      const double hard_n =
+          hard + step * (d_hard + step * (0.5 * dd_hard + step * (d3_hard / 6.0)));
+      const double rate_n =
+          rate + step * (d_rate + step * (0.5 * dd_rate + step * (d3_rate / 6.0)));
+      const double hard_rate_n = hard_n * rate_n;
+      const double g_n = q_trial - three_g * next - scale * hard_rate_n;
+      if (std::abs(g_n) + scale * hard_rate_n * trunc <= tol_g) {
+        r.hard = hard_n;
+        r.rate = rate_n;
+        r.hard_rate = hard_rate_n;
+        r.converged = true;
+        dp = next;
+        break;
+      }
+    }
     dp = next;
   }
   r.delta_eps_p = dp;

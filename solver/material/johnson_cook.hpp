@@ -60,9 +60,12 @@ struct ReturnMapResult {
 // (typically the previous step's plastic rate times dt) seeds Newton, else the
 // linearised-hardening estimate does. g(0) > 0 (the
 // caller checked yielding), g(q_trial / 3 G_d) <= 0, and g is strictly
-// decreasing, so the root is unique and bracketed. Newton steps from the
-// linearised-hardening guess are kept inside the shrinking bracket; a step
-// that would leave it bisects instead. This converges for every state: near
+// decreasing, so the root is unique and bracketed. Halley steps (Newton's
+// where g's curvature term is not small) from the guess are kept inside the
+// shrinking bracket; a step that would leave it bisects instead. A last step
+// small enough for Taylor expansions of the hardening and rate terms to be
+// exact to 1e-14 ends the iteration without one more evaluation (hard, rate
+// and hard_rate are then those expansions). This converges for every state: near
 // melt (scale -> 0), at rates 1e-3 to 1e8 /s, and where d sigma / d eps_p is
 // unbounded (n < 1 at eps_p = 0).
 ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_hardening,

@@ -19,25 +19,14 @@
 #include "api/server.hpp"
 #include "campaign/store.hpp"
 #include "solver/input/schema.hpp"
+#include "support/temp_dir.hpp"
 
 namespace splat::api_test {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() /
-           ("splat_api_" + std::to_string(getpid()) + "_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
+using nlohmann::json;
+using splat::test_support::TempDir;
 
 // The two-mass scene (thesis 3.5.1.1) inline: jobs run in milliseconds.
 inline json two_mass_scene() {

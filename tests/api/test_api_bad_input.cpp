@@ -132,7 +132,23 @@ TEST_F(BadInput, unknown_routes_and_ids) {
   expect_problem(c.Get("/api/v1/jobs/0123"), 404);
   expect_problem(c.Get(("/api/v1/jobs/" + std::string(64, 'a')).c_str()), 404);
   expect_problem(c.Get("/api/v1/schemas/nope"), 404);
-  expect_problem(c.Delete("/api/v1/campaigns/1"), 404);
+  expect_problem(c.Delete("/api/v1/nothing"), 404);
+}
+
+// A path that exists asked with a method it does not serve: 405 and Allow.
+TEST_F(BadInput, wrong_methods_get_405_with_allow) {
+  httplib::Client c = server_->client();
+  const auto expect_405 = [](const httplib::Result& r, const std::string& allow) {
+    expect_problem(r, 405);
+    if (r) {
+      EXPECT_EQ(r->get_header_value("Allow"), allow) << r->body;
+    }
+  };
+  expect_405(c.Delete("/api/v1/campaigns/1"), "GET");
+  expect_405(c.Post("/api/v1/health"), "GET");
+  expect_405(c.Get("/api/v1/campaigns/1/cancel"), "POST");
+  expect_405(c.Put("/api/v1/campaigns"), "POST, GET");
+  expect_405(c.Patch(("/api/v1/jobs/" + std::string(64, 'a')).c_str()), "GET");
 }
 
 TEST_F(BadInput, bad_query_parameters) {

@@ -166,6 +166,32 @@ TEST(api_campaigns, idempotent_retry_returns_the_first_result) {
   EXPECT_EQ(store_fingerprint(o.db), before);
 }
 
+// Keys live in the store: a retry after a server restart is still a replay,
+// and the key still refuses another body.
+TEST(api_campaigns, idempotency_keys_survive_a_restart) {
+  TempDir dir;
+  api::ServerOptions o = options_for(dir);
+  o.run_campaigns = false;
+  const httplib::Headers key = {{"Idempotency-Key", "restart-91ab"}};
+  json first;
+  {
+    ServerHandle server(o);
+    httplib::Client c = server.client();
+    auto r = post_json(c, "/api/v1/campaigns", small_campaign("before-restart"), key);
+    ASSERT_EQ(r->status, 202) << r->body;
+    first = body_json(r);
+  }
+  const std::string before = store_fingerprint(o.db);
+  ServerHandle server(o);
+  httplib::Client c = server.client();
+  auto again = post_json(c, "/api/v1/campaigns", small_campaign("before-restart"), key);
+  ASSERT_EQ(again->status, 202) << again->body;
+  EXPECT_EQ(again->get_header_value("Idempotent-Replayed"), "true");
+  EXPECT_EQ(body_json(again)["id"], first["id"]);
+  expect_problem(post_json(c, "/api/v1/campaigns", small_campaign("after-restart"), key), 422);
+  EXPECT_EQ(store_fingerprint(o.db), before);
+}
+
 TEST(api_campaigns, etag_gives_304_until_something_changes) {
   TempDir dir;
   api::ServerOptions o = options_for(dir);

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "campaign/manager.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
@@ -26,17 +27,7 @@ using namespace splat::campaign;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("splat_exec_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using splat::test_support::TempDir;
 
 const SceneResolver identity = [](const json& scene, const fs::path&) { return scene; };
 

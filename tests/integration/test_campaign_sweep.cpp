@@ -22,24 +22,18 @@
 #include <thread>
 
 #include "campaign/manager.hpp"
+#include "support/scene_runs.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
+
+using splat::test_support::run_splat;
 
 using namespace splat::campaign;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("splat_sweep_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using splat::test_support::TempDir;
 
 const fs::path k_source = SPLAT_SOURCE_DIR;
 
@@ -64,24 +58,6 @@ ManagerOptions splat_options() {
   o.job_program = SPLAT_BINARY;
   o.poll_seconds = 0.05;
   return o;
-}
-
-struct Output {
-  int code = -1;
-  std::string text;
-};
-
-Output run(const std::string& args) {
-  const std::string cmd = std::string(SPLAT_BINARY) + " " + args + " 2>&1";
-  Output out;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return out;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.text.append(buf.data(), n);
-  const int status = pclose(pipe);
-  out.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
 }
 
 TEST(campaign_sweep, refinement_finds_the_fine_grid_window_with_fewer_jobs) {
@@ -132,18 +108,19 @@ TEST(campaign_sweep, sweep_and_windows_commands) {
   const fs::path spec = t.path / "c.json";
   std::ofstream(spec) << two_mass_campaign("cli", 0.1, 0.01).dump(2);
   const std::string db = (t.path / "c.db").string();
-  Output o = run("sweep " + spec.string() + " --db " + db + " --workers 2");
-  ASSERT_EQ(o.code, 0) << o.text;
-  EXPECT_NE(o.text.find("critical velocity m/s"), std::string::npos) << o.text;
-  EXPECT_NE(o.text.find("below 0.1"), std::string::npos) << o.text;  // open lower edge
+  auto o = run_splat("sweep " + spec.string() + " --db " + db + " --workers 2");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("critical velocity m/s"), std::string::npos) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("below 0.1"), std::string::npos)
+      << o.stdout_text;  // open lower edge
   // Again: everything comes from the store.
-  o = run("sweep " + spec.string() + " --db " + db);
-  ASSERT_EQ(o.code, 0) << o.text;
-  EXPECT_NE(o.text.find("0 started here"), std::string::npos) << o.text;
+  o = run_splat("sweep " + spec.string() + " --db " + db);
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("0 started here"), std::string::npos) << o.stdout_text;
 
-  o = run("windows --db " + db + " --format json");
-  ASSERT_EQ(o.code, 0) << o.text;
-  const json rows = json::parse(o.text);
+  o = run_splat("windows --db " + db + " --format json");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const json rows = json::parse(o.stdout_text);
   ASSERT_EQ(rows.size(), 2u);
   for (const json& row : rows) {
     EXPECT_TRUE(row.contains("params"));
@@ -152,18 +129,19 @@ TEST(campaign_sweep, sweep_and_windows_commands) {
     EXPECT_TRUE(row.at("maximum_bracket").at("width").get<double>() <= 0.01);
     EXPECT_EQ(row.at("intervals").size(), 1u);
   }
-  o = run("windows --db " + db + " --format csv");
-  ASSERT_EQ(o.code, 0) << o.text;
-  EXPECT_EQ(o.text.rfind("campaign_id,params,critical_velocity", 0), 0u) << o.text;
-  o = run("windows --db " + db + " --campaign 99");
+  o = run_splat("windows --db " + db + " --format csv");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_EQ(o.stdout_text.rfind("campaign_id,params,critical_velocity", 0), 0u) << o.stdout_text;
+  o = run_splat("windows --db " + db + " --campaign 99");
   EXPECT_EQ(o.code, 2);
-  EXPECT_NE(o.text.find("--campaign: no campaign 99"), std::string::npos) << o.text;
+  EXPECT_NE(o.stdout_text.find("--campaign: no campaign 99"), std::string::npos) << o.stdout_text;
 
   // Bad input names the field.
   std::ofstream(spec) << R"({"name": "bad", "base_scene": "x.json", "velocity": {"values": [-1]}})";
-  o = run("sweep " + spec.string() + " --db " + db);
+  o = run_splat("sweep " + spec.string() + " --db " + db);
   EXPECT_EQ(o.code, 2);
-  EXPECT_NE(o.text.find("/velocity/values/0: must be >= 0 (m/s)"), std::string::npos) << o.text;
+  EXPECT_NE(o.stdout_text.find("/velocity/values/0: must be >= 0 (m/s)"), std::string::npos)
+      << o.stdout_text;
 }
 
 // A campaign over the particle_impact example (scenes/impact_al_al.json):
@@ -181,12 +159,12 @@ TEST(campaign_sweep, impact_jobs_classify_like_two_mass_jobs) {
                               {"job", {{"time_limit", 120}}}}
                              .dump(2);
   const std::string db = (t.path / "c.db").string();
-  Output o = run("sweep " + spec.string() + " --db " + db + " --workers 2");
-  ASSERT_EQ(o.code, 0) << o.text;
-  o = run("windows --db " + db + " --format json");
-  ASSERT_EQ(o.code, 0) << o.text;
-  const json rows = json::parse(o.text);
-  ASSERT_EQ(rows.size(), 1u) << o.text;
+  auto o = run_splat("sweep " + spec.string() + " --db " + db + " --workers 2");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  o = run_splat("windows --db " + db + " --format json");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const json rows = json::parse(o.stdout_text);
+  ASSERT_EQ(rows.size(), 1u) << o.stdout_text;
   EXPECT_EQ(rows[0].at("params"), json::parse(R"({"G_c": 30})"));
   ASSERT_TRUE(rows[0].at("critical_velocity").is_number()) << rows[0].dump(2);
   EXPECT_GT(rows[0].at("critical_velocity").get<double>(), 200.0);
@@ -233,12 +211,12 @@ TEST(campaign_sweep, sweep_command_survives_kill_minus_nine) {
     stored = c.succeeded;
     EXPECT_LT(stored, 282) << "the sweep ended before the kill; nothing tested";
   }
-  const Output o = run("sweep " + spec.string() + " --db " + db.string());
-  ASSERT_EQ(o.code, 0) << o.text;
-  EXPECT_NE(
-      o.text.find("282 jobs: 282 succeeded; " + std::to_string(282 - stored) + " started here"),
-      std::string::npos)
-      << o.text;
+  const auto o = run_splat("sweep " + spec.string() + " --db " + db.string());
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("282 jobs: 282 succeeded; " + std::to_string(282 - stored) +
+                               " started here"),
+            std::string::npos)
+      << o.stdout_text;
 }
 
 TEST(campaign_sweep, regress_passes_on_its_baseline_and_fails_on_drift) {
@@ -246,10 +224,10 @@ TEST(campaign_sweep, regress_passes_on_its_baseline_and_fails_on_drift) {
   const fs::path campaign = k_source / "campaigns/regress_two_mass.json";
   const fs::path baseline = k_source / "campaigns/regress_two_mass.baseline.json";
   const std::string db = (t.path / "r.db").string();
-  Output o =
-      run("regress " + campaign.string() + " --baseline " + baseline.string() + " --db " + db);
-  EXPECT_EQ(o.code, 0) << o.text;
-  EXPECT_NE(o.text.find("no drift"), std::string::npos) << o.text;
+  auto o = run_splat("regress " + campaign.string() + " --baseline " + baseline.string() +
+                     " --db " + db);
+  EXPECT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("no drift"), std::string::npos) << o.stdout_text;
 
   // Move one edge of the baseline by 0.1 m/s: drift, exit 1, named.
   json b = json::parse(std::ifstream(baseline));
@@ -261,10 +239,11 @@ TEST(campaign_sweep, regress_passes_on_its_baseline_and_fails_on_drift) {
   }
   const fs::path drifted = t.path / "drifted.json";
   std::ofstream(drifted) << b.dump(2);
-  o = run("regress " + campaign.string() + " --baseline " + drifted.string() + " --db " + db);
-  EXPECT_EQ(o.code, 1) << o.text;
-  EXPECT_NE(o.text.find("DRIFT"), std::string::npos) << o.text;
-  EXPECT_NE(o.text.find("0 run"), std::string::npos) << o.text;  // cached results reused
+  o = run_splat("regress " + campaign.string() + " --baseline " + drifted.string() + " --db " + db);
+  EXPECT_EQ(o.code, 1) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("DRIFT"), std::string::npos) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("0 run"), std::string::npos)
+      << o.stdout_text;  // cached results reused
 }
 
 }  // namespace

@@ -5,46 +5,29 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "solver/input/schema.hpp"
 #include "solver/io/result_file.hpp"
+#include "support/scene_runs.hpp"
 
 namespace splat {
 namespace {
 
+using splat::test_support::run_splat;
+
 using nlohmann::json;
-
-struct Output {
-  int code = -1;
-  std::string out;  // stdout only
-};
-
-Output run(const std::string& args) {
-  const std::string cmd = std::string(SPLAT_BINARY) + " " + args + " 2>/dev/null";
-  Output o;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return o;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) o.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
 
 const std::string scene = std::string(SPLAT_SOURCE_DIR) + "/scenes/verification/two_mass.json";
 
 TEST(two_mass_run, summary_and_histories_of_the_thesis_case) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("splat_two_mass_" + std::to_string(getpid()));
-  const Output o = run("run " + scene + " --json --out " + dir.string());
-  ASSERT_EQ(o.code, 0) << o.out;
-  const json s = json::parse(o.out);
+  const auto o = run_splat("run " + scene + " --json --out " + dir.string(), false);
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const json s = json::parse(o.stdout_text);
   EXPECT_TRUE(validate("result", s).empty()) << s.dump(2);
   EXPECT_EQ(s["outcome"], "rebound");
   // 1/3 - (2/3) sqrt(0.4), the k = 0 closed form, away from m.
@@ -90,22 +73,16 @@ TEST(two_mass_run, bounds_give_a_verdict_or_an_input_error) {
       {"--set /two_mass/adhesion/sigma_c=0", 2, "/two_mass/adhesion/sigma_c: must be > 0 (Pa)"},
   };
   for (const Case& c : cases) {
-    const Output o = run("run " + scene + " --json --out '' " + c.set);
-    EXPECT_EQ(o.code, c.code) << c.set << "\n" << o.out;
+    const auto o = run_splat("run " + scene + " --json --out '' " + c.set, false);
+    EXPECT_EQ(o.code, c.code) << c.set << "\n" << o.stdout_text;
     if (c.code == 2) continue;  // the message goes to stderr; checked below
-    const json s = json::parse(o.out);
+    const json s = json::parse(o.stdout_text);
     EXPECT_EQ(s["outcome"], c.outcome_or_message) << c.set << ": " << s["reason"];
     EXPECT_LT(s["wall_seconds"].get<double>(), 1.0) << c.set;
   }
   for (const Case& c : cases) {
     if (c.code != 2) continue;
-    const std::string cmd = std::string(SPLAT_BINARY) + " run " + scene + " " + c.set + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    std::string text;
-    std::array<char, 4096> buf{};
-    std::size_t n = 0;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) text.append(buf.data(), n);
-    pclose(pipe);
+    const std::string text = run_splat("run " + scene + " " + c.set).stdout_text;
     EXPECT_NE(text.find(c.outcome_or_message), std::string::npos) << c.set << "\n" << text;
   }
 }

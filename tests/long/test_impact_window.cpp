@@ -12,7 +12,8 @@
 //     max_eroded_fraction of the particle eroded, or the energy balance):
 //     the sweep goes to 3000 m/s and asks only for stated outcomes there.
 // Prints the table (velocity, outcome, links activated and eroded, bonded
-// area) and the critical and maximum velocities found.
+// area) and the critical and maximum velocities found. The FE model is asked
+// for by name (`auto` picks SPH above 500 m/s; tests/long/test_sph_impact_window.cpp).
 // Run with: ctest --test-dir build -L long -R impact_window --output-on-failure
 #include <gtest/gtest.h>
 
@@ -41,9 +42,9 @@ std::vector<Point> sweep(const std::string& scene) {
   std::printf("%s\n", scene.c_str());
   for (double v :
        {100.0, 200.0, 300.0, 400.0, 500.0, 600.0, 700.0, 800.0, 1000.0, 1500.0, 2000.0, 3000.0}) {
-    const LoadedScene loaded =
-        load_scene(std::filesystem::path(SPLAT_SOURCE_DIR) / "scenes" / scene,
-                   {"/particle_impact/velocity=" + std::to_string(v)});
+    const LoadedScene loaded = load_scene(
+        std::filesystem::path(SPLAT_SOURCE_DIR) / "scenes" / scene,
+        {"/particle_impact/velocity=" + std::to_string(v), "/particle_impact/fidelity=fe-axisym"});
     SimulationOptions options;
     options.threads = 1;
     Simulation sim(loaded.scene, loaded.resolved, options);

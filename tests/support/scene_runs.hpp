@@ -43,4 +43,11 @@ inline CommandOutput run_command(const std::string& command) {
   return out;
 }
 
+// Runs the built `splat ARGS`; its standard error joins the output when
+// `with_stderr`, else it is dropped.
+inline CommandOutput run_splat(const std::string& args, bool with_stderr = true) {
+  return run_command(std::string(SPLAT_BINARY) + " " + args +
+                     (with_stderr ? " 2>&1" : " 2>/dev/null"));
+}
+
 }  // namespace splat::test_support

@@ -12,23 +12,14 @@
 
 #include "campaign/process.hpp"
 #include "campaign/store.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
 using namespace splat::campaign;
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("splat_store_" + std::to_string(getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using splat::test_support::TempDir;
 
 CampaignRecord campaign_named(const std::string& name) {
   CampaignRecord c;
@@ -186,6 +177,83 @@ TEST(campaign_store, windows_round_trip) {
   EXPECT_FALSE(w[0].maximum_velocity);
   s.store_windows(c, {});
   EXPECT_TRUE(s.windows(c).empty());
+}
+
+// A campaign and its points are one write: a point the schema refuses (an
+// unknown origin) leaves neither the campaign nor any job behind.
+TEST(campaign_store, campaign_and_points_are_stored_together_or_not_at_all) {
+  TempDir t;
+  Store s(t.path / "c.db");
+  NewPoint bad = point("{}", 3.0, "h3");
+  bad.point.origin = "elsewhere";
+  EXPECT_THROW(s.open_campaign(campaign_named("x"), {point("{}", 1.0, "h1"), bad}, false),
+               SqliteError);
+  EXPECT_TRUE(s.campaigns().empty());
+  EXPECT_FALSE(s.job("h1"));
+  const OpenedCampaign ok =
+      s.open_campaign(campaign_named("x"), {point("{}", 1.0, "h1"), point("{}", 2.0, "h2")}, false);
+  EXPECT_FALSE(ok.replayed);
+  EXPECT_EQ(ok.points.jobs_created, 2);
+  EXPECT_EQ(s.job_counts(ok.id).total(), 2);
+}
+
+// Submission keys: a retry with the same body gets the first campaign and
+// writes nothing; another body under the key is refused; the key survives a
+// restart and is forgotten after k_submission_key_seconds.
+TEST(campaign_store, submission_keys_replay_refuse_persist_and_expire) {
+  TempDir t;
+  const fs::path db = t.path / "c.db";
+  std::int64_t first = 0;
+  {
+    Store s(db);
+    const OpenedCampaign a = s.open_campaign(campaign_named("a"), {point("{}", 1.0, "h1")}, false,
+                                             SubmissionKey{"k1", "body-a"});
+    first = a.id;
+    const OpenedCampaign again = s.open_campaign(campaign_named("a"), {point("{}", 1.0, "h1")},
+                                                 false, SubmissionKey{"k1", "body-a"});
+    EXPECT_TRUE(again.replayed);
+    EXPECT_EQ(again.id, first);
+    EXPECT_THROW(s.open_campaign(campaign_named("b"), {point("{}", 2.0, "h2")}, false,
+                                 SubmissionKey{"k1", "body-b"}),
+                 SubmissionKeyReused);
+    EXPECT_EQ(s.campaigns().size(), 1u);
+    EXPECT_FALSE(s.job("h2"));
+  }
+  Store s(db);
+  ASSERT_TRUE(s.submission("k1"));
+  EXPECT_EQ(s.submission("k1")->campaign_id, first);
+  EXPECT_EQ(s.submission("k1")->body_hash, "body-a");
+  EXPECT_FALSE(s.submission("k2"));
+  // A day and a bit later the key is free again.
+  s.write([](Database& d) {
+    d.prepare("UPDATE submissions SET created_at = created_at - ?")
+        .bind(1, k_submission_key_seconds + 60.0)
+        .run();
+  });
+  EXPECT_FALSE(s.submission("k1"));
+  const OpenedCampaign b = s.open_campaign(campaign_named("b"), {point("{}", 2.0, "h2")}, false,
+                                           SubmissionKey{"k1", "body-b"});
+  EXPECT_FALSE(b.replayed);
+  EXPECT_NE(b.id, first);
+  EXPECT_EQ(s.submission("k1")->campaign_id, b.id);
+}
+
+// A version-1 file (before submission keys) gains the table and keeps its data.
+TEST(campaign_store, migrates_a_version_1_file) {
+  TempDir t;
+  const fs::path db = t.path / "c.db";
+  {
+    Store s(db);
+    s.open_campaign(campaign_named("old"));
+    s.write([](Database& d) {
+      d.exec("DROP TABLE submissions");
+      d.exec("PRAGMA user_version = 1");
+    });
+  }
+  Store s(db);
+  EXPECT_EQ(s.schema_version(), 2);
+  ASSERT_EQ(s.campaigns().size(), 1u);
+  EXPECT_FALSE(s.submission("k"));
 }
 
 // Several Stores (each with its own writer thread and connections, as

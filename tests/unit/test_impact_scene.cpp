@@ -20,7 +20,11 @@ json impact(json block) {
 }
 
 json al_on_al(double v) {
-  return {{"particle", {{"material", "al-thesis"}, {"radius", 12.5e-6}, {"elements_across", 8}}},
+  return {{"particle",
+           {{"material", "al-thesis"},
+            {"radius", 12.5e-6},
+            {"elements_across", 8},
+            {"discretization", "fe"}}},
           {"velocity", v}};
 }
 
