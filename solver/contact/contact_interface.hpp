@@ -5,7 +5,12 @@
 // Where it acts in the time step (README "Time step"):
 //   Lagrange  stage 3, after predict: pairs are found on the predicted
 //             positions x_{n+1}; the impulses p make x_{n+1} free of
-//             penetration; v_{n+1/2} += dv and x_{n+1} += dt dv.
+//             penetration; v_{n+1/2} += dv and x_{n+1} += dt dv. A pair
+//             already penetrating at x_n is only stopped by the velocity
+//             solve; a second, position-only solve (split impulse, as in
+//             Box2D and the penetration handling of explicit codes) moves it
+//             out by up to 2 % of its face size per step, x_{n+1} += dt w,
+//             without changing v (no energy made).
 //   penalty   stage 5, after the internal forces: f = kappa A (-g) n on the
 //             pairs that penetrate at x_{n+1}; the work of these forces is
 //             booked in the next stage 1, when they move the nodes.
@@ -83,6 +88,8 @@ struct ContactStats {
   double bonded_area = 0.0;        // m^2, area of the active links now
   double max_bonded_area = 0.0;    // m^2
   long long links_in_tension = 0;  // links that carried tension in the last step
+  // Largest node displacement of the position-only push-out in one step, m.
+  double max_position_correction = 0.0;
 };
 
 class ContactInterface {
@@ -98,6 +105,15 @@ class ContactInterface {
   // adhesion tests then read the particle's own state). FE sides index `fe`.
   void attach_bodies(const std::vector<FeBody>& fe, const std::vector<SphBody>& sph,
                      bool master_is_sph, std::size_t master, bool slave_is_sph, std::size_t slave);
+
+  // After elements eroded (axisymmetric FE pairs): the segments their
+  // removal exposed join the surfaces, so the contact follows the eroded
+  // surface instead of letting the other body pass into the hole. Master:
+  // new segments appended (indices kept), segments of eroded elements no
+  // longer detected. Slave: rebuilt from the boundary of the active
+  // elements; the per-node link records move with their nodes, new nodes
+  // start unlinked. Segments on the axis (r = 0 at both ends) are left out.
+  void follow_erosion(const std::vector<FeBody>& bodies, const NodeSet& nodes);
 
   // Stage 3 (Lagrange): corrects v and x of the nodes in contact.
   // `bodies` are the model's bodies (the adhesion tests read their states).
@@ -136,6 +152,13 @@ class ContactInterface {
   void build_problem(const NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask,
                      const std::vector<DetectedPair>& pairs, double dt);
   void release_local_nodes();
+  // Split impulse, after the velocity solve (Lagrange): moves the nodes of
+  // pairs that were already penetrating at x_n out by pushout_ (m) through
+  // positions only. No velocity changes, so no kinetic energy is made; the
+  // stresses follow the velocity gradient, so no internal energy either:
+  // the correction does no work in the balance.
+  void correct_positions(NodeSet& nodes, const std::vector<DetectedPair>& pairs,
+                         const ContactSolution& sol, double dt);
   double scale() const;
   // Link state changes before the solve (activation, erosion, first touch)
   // from the material state of both sides; sets the areas of new links.
@@ -161,13 +184,18 @@ class ContactInterface {
   // Scratch, reused every step.
   ContactProblem problem_;
   std::size_t first_pass_pairs_ = 0;
+  std::vector<double> start_gap_;      // per pair: gap at x_n, g - dt C v, m
+  std::vector<double> pushout_;        // per pair: position push-out wanted this step, m
   std::vector<int> local_;             // global node -> local index, -1 when not in use
   std::vector<int> local_nodes_;       // local -> global
   std::vector<std::uint8_t> touched_;  // per slave node: has carried a force
+  std::vector<std::uint8_t>
+      pressed_;  // per slave node: carried a force (or link tension) in the last step
   // Set once by attach_bodies: the slave-body elements around each slave node
   // (CSR) and the master-body element of each master face.
   std::vector<int> slave_elem_offsets_, slave_elem_entries_;
   std::vector<int> master_face_element_;
+  std::vector<std::uint8_t> master_face_dead_;      // 1: the face's element was eroded
   std::size_t master_index_ = 0, slave_index_ = 0;  // in the model's (FE or SPH) bodies
   bool master_sph_ = false, slave_sph_ = false;     // the side is an SPH body
   // Adhesion, per slave node (SoA): state, work, area, last master face,

@@ -13,9 +13,6 @@ namespace {
 constexpr double k_hold_transits = 8.0;     // hold time in particle transits R / c_p, -
 constexpr double k_wall_touch = 1e-9;       // gap / R below which a node touches a rigid wall, -
 constexpr double k_thesis_fraction = 0.01;  // thesis: > 1 % of the most links ever active
-// Particle mass eroded above which the model no longer represents the
-// particle: the verdict is withheld (outcome unstable), -.
-constexpr double k_max_eroded_mass = 0.05;
 // |v_n| / v_impact above which a particle still moving into the substrate at
 // the maximum time has no verdict, -.
 constexpr double k_undecided_speed = 0.05;
@@ -240,14 +237,17 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
   }
 
   bool own_end = settled.has_value() || s.stop_reason == "end-time";
-  if (own_end && eroded_fraction > k_max_eroded_mass) {
+  // Above the scene's max_eroded_fraction the remaining body no longer
+  // represents the particle: the verdict is withheld (outcome unstable).
+  if (own_end && eroded_fraction > spec_.max_eroded_fraction) {
     own_end = false;
     s.outcome = RunOutcome::unstable;
     s.stop_reason = "erosion-limit";
     s.reason = format_reason(
-        "no verdict: %.1f %% of the particle's mass was eroded (limit %.0f %%); the mesh cannot "
-        "follow this deformation at this resolution",
-        100.0 * eroded_fraction, 100.0 * k_max_eroded_mass);
+        "no verdict: %.1f %% of the particle's mass was eroded (limit max_eroded_fraction "
+        "%.0f %%): the particle broke up (elements at the damage cap) or its mesh could not "
+        "follow the deformation",
+        100.0 * eroded_fraction, 100.0 * spec_.max_eroded_fraction);
   } else if (own_end && !settled && now.v_normal < -k_undecided_speed * spec_.velocity) {
     own_end = false;
     s.outcome = RunOutcome::unstable;

@@ -116,6 +116,9 @@ bool Simulation::Impl::internal_forces(RunSummary& s) {
       const ErodedEnergy er = erode_element(body, n, e);
       energy.eroded += (er.internal + er.kinetic) * scale();
     }
+    if (!r.to_erode.empty()) {
+      for (ContactInterface& c : model.contacts) c.follow_erosion(model.bodies, n);
+    }
     if (r.return_failed) {
       s.outcome = RunOutcome::unstable;
       s.stop_reason = "return-mapping";

@@ -93,6 +93,7 @@ void finish_body(FeBody& body, NodeSet& nodes, double temperature, unsigned long
   }
   body.q.assign(ne, 0.0);
   body.hg.assign(ne, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+  body.hg_kappa.assign(ne, 0.0);
   body.active.assign(ne, 1);
   std::array<Vec3, 8> zero;
   zero.fill(Vec3::Zero());
@@ -290,6 +291,7 @@ void hex_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, B
   if (body.settings.stiffness_hourglass) {
     const double G_d = (1.0 - body.state[e].D) * body.constants.G;
     const double kappa = hex8_stiffness_hourglass_coefficient(c_hg, G_d, V);
+    soften_held_hourglass(body.hg_kappa[e], kappa, body.hg[e].data(), 4);
     hg_power = hex8_hourglass_stiffness(qdot, kappa, dt, ms.R, body.hg[e]);
     Q = body.hg[e];
   } else {
@@ -373,6 +375,7 @@ void hex_element_pair(FeBody& body, const NodeSet& nodes, std::size_t e, double 
     if (body.settings.stiffness_hourglass) {
       const double G_d = (1.0 - body.state[el].D) * body.constants.G;
       const double kappa = hex8_stiffness_hourglass_coefficient(c_hg, G_d, V[l]);
+      soften_held_hourglass(body.hg_kappa[el], kappa, body.hg[el].data(), 4);
       hg_power[l] = hex8_hourglass_stiffness(q, kappa, dt, ms[l].R, body.hg[el]);
       Q[l] = body.hg[el];
     } else {
@@ -430,6 +433,7 @@ void quad_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, 
   if (body.settings.stiffness_hourglass) {
     const double G_d = (1.0 - body.state[e].D) * body.constants.G;
     const double kappa = quad4_axisym_stiffness_hourglass_coefficient(c_hg, G_d, g.rbar);
+    soften_held_hourglass(body.hg_kappa[e], kappa, body.hg[e].data(), 1);
     Vec3& Q = body.hg[e][0];
     double q[2] = {Q.x(), Q.y()};
     hg_power = quad4_axisym_hourglass_stiffness_cm(gamma, v, kappa, dt, ms.R, q, f);

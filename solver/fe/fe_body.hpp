@@ -11,6 +11,7 @@
 // simpler and faster than gathering twenty separate arrays.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -68,6 +69,7 @@ struct FeBody {
   std::vector<double> char_length;              // characteristic length for the time step, m
   std::vector<double> q;                        // bulk-viscosity pressure, Pa
   std::vector<std::array<Vec3, 4>> hg;          // stiffness-form hourglass generalised forces
+  std::vector<double> hg_kappa;                 // stiffness-form kappa that hg was built with
   std::vector<std::uint8_t> active;             // 0 once eroded
   std::vector<std::array<Vec3, 8>> elem_force;  // scratch: element nodal forces
 
@@ -87,6 +89,24 @@ struct FeStepResult {
   long long inverted = 0;      // active elements with non-positive volume (not eroded)
   std::vector<int> to_erode;   // elements that met an erosion criterion this step
 };
+
+// Stiffness-form hourglass control (Flanagan-Belytschko) holds its
+// generalised forces Q across steps, Q += kappa dt qdot: a spring of
+// displacement Q / kappa and stored energy |Q|^2 / (2 kappa). When kappa
+// falls (damage softens G_d = (1 - D) G, the element shrinks), a held Q would
+// give back |Q|^2 / (2 kappa_new), more than was stored: the booked hourglass
+// work turns negative, energy made from nothing. Q is scaled by
+// kappa / kappa_held, keeping the displacement: the stored energy falls by the
+// same factor and the difference stays in the hourglass work (dissipated).
+// A stiffening kappa keeps Q (the stored energy falls, nothing is made).
+// kappa_held is set to kappa for the next step; 0 = nothing held yet.
+inline void soften_held_hourglass(double& kappa_held, double kappa, Vec3* Q, int n) {
+  if (kappa_held > 0.0 && kappa < kappa_held) {
+    const double s = std::max(kappa, 0.0) / kappa_held;
+    for (int i = 0; i < n; ++i) Q[i] *= s;
+  }
+  kappa_held = kappa;
+}
 
 // Hughes-Winget incremental rotation Q = (I - A)^{-1} (I + A), A = W dt / 2,
 // of the spin W over dt (the rotation jaumann_rotate applies), in the closed

@@ -825,6 +825,7 @@ ImpactSpec impact_spec(const json& block) {
   impact.velocity = block.at("velocity").get<double>();
   impact.angle = block.value("angle", 0.0);
   impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
+  impact.max_eroded_fraction = block.value("max_eroded_fraction", impact.max_eroded_fraction);
   impact.model = model.value("name", "");
   impact.why = model.value("why", "");
   return impact;

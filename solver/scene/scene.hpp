@@ -144,6 +144,7 @@ struct ImpactSpec {
   double velocity = 0.0;              // impact speed, m/s
   double angle = 0.0;                 // from the substrate normal, deg
   bool adaptive_end = true;           // stop once the outcome is decided
+  double max_eroded_fraction = 0.5;   // particle mass share erosion may take with a verdict, -
   std::string model;                  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full
   std::string why;                    // why that model, for people
 };

@@ -165,7 +165,14 @@ TEST(ContactImpact, elastic_sphere_bounce_lagrange_3d) {
       e.balance_error, e.contact_work / e.initial_total, s.bodies[0].centroid_velocity.z(),
       s.interfaces[0].max_pairs_in_contact, s.interfaces[0].max_solver_iterations);
   EXPECT_LT(std::abs(e.balance_error), 0.03);
-  EXPECT_LT(std::abs(e.contact_work) / e.initial_total, 1e-3);
+  // Split impulse: a pair that lands does the work p C v_{n+1/2} = -p g_n / dt
+  // <= 0, and a pair already penetrating is only stopped (C v = 0, no work)
+  // and moved out through positions, so the contact never makes energy: its
+  // work is the loss of the node-level landings on the faceted sphere
+  // (measured -1.26e-3 of E0; the velocity push-out it replaced booked
+  // positive work that hid part of it, |work| < 1e-3).
+  EXPECT_LE(e.contact_work, 0.0);
+  EXPECT_LT(-e.contact_work / e.initial_total, 2e-3);
   EXPECT_EQ(s.interfaces[0].pairs_in_contact, 0);
   EXPECT_GT(s.bodies[0].centroid_velocity.z(), 0.9 * 20.0);
 }
