@@ -22,12 +22,12 @@ constexpr double k_size_velocity = 250.0;        // m/s per extra particle radiu
 constexpr double k_rigid_factor = 3.0;           // substrate yield / particle flow stress for rigid
 constexpr double k_hourglass_coefficient = 0.1;  // stiffness-form hourglass coefficient, -
 constexpr double k_erosion_dt_fraction = 0.05;   // default geometric erosion, of h / c_p, -
-// Fastest impact the FE particle mesh survives with a verdict: README
-// "Robustness" table (Al/Al, 8 and 16 elements across) had stick/rebound up
-// to 500 m/s and only `unstable` from 600 m/s. Since the split-impulse
-// contact, the hourglass fix and damage erosion it gives verdicts up to
-// 800 m/s at 8, 12 and 16 across; the constant has not been moved yet (the
-// SPH rung's tests and tables assume 500). Above it `auto` models the
+// Fastest impact `auto` models with an FE particle. README "Robustness"
+// table (Al/Al at 8, 12 and 16 elements across): verdicts up to 800 m/s, but
+// from 600 m/s on they rest on element erosion (the jetting rim reaches the
+// damage cap and is removed, links with it) and from 1000-1500 m/s the runs
+// end `unstable` (eroded-mass limit, energy balance). SPH keeps all the
+// particle's material (thesis 1.3.2.2), so above this speed `auto` models the
 // particle with SPH. One constant: move it when the FE table moves.
 constexpr double k_fe_max_velocity = 500.0;  // m/s
 constexpr int k_sph_default_across =
@@ -120,7 +120,14 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   // the particle (max_eroded_fraction).
   const bool adhesion_erosion =
       has_adhesion && adhesion.contains("D_adh_max") && !adhesion.at("D_adh_max").is_null();
-  const bool damage = pi.value("damage", pi.value("erosion", false) || adhesion_erosion);
+  // The yield-drop activation detects the onset of an adiabatic shear
+  // instability, which the material law produces only with its damage
+  // softening (thesis 1.4.4, 2.2.2: damage is added to the law so that the
+  // interface can localise): damage is on by default with that criterion too.
+  const bool yield_drop = has_adhesion && adhesion.contains("activation") &&
+                          adhesion.at("activation").value("rule", "none") == "yield-drop";
+  const bool damage =
+      pi.value("damage", pi.value("erosion", false) || adhesion_erosion || yield_drop);
   const bool erosion = damage && pi.value("erosion", true);
   const std::string fidelity = pi.value("fidelity", "auto");
   const std::string substrate_kind = substrate.value("type", "auto");
@@ -147,8 +154,8 @@ ExpandedImpact expand_particle_impact(const json& doc) {
       reasons.push_back(sph_asked ? std::string("SPH particle as asked")
                                   : "SPH particle: impact velocity " + std::to_string(v) +
                                         " m/s is above " + std::to_string(k_fe_max_velocity) +
-                                        " m/s, the fastest the FE particle mesh survives "
-                                        "(README robustness table)");
+                                        " m/s, above which the FE particle's jetting rim "
+                                        "erodes (README robustness table)");
       reasons.push_back(sph_substrate
                             ? (substrate_disc == "sph"
                                    ? std::string("SPH substrate as asked")
@@ -256,7 +263,7 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   }
   reasons.push_back(has_adhesion ? "adhesion on contact pairs"
                                  : "no adhesion asked: plain contact");
-  if (!damage) reasons.push_back("no erosion or D_adh_max: damage off");
+  if (!damage) reasons.push_back("no erosion, D_adh_max or yield-drop activation: damage off");
 
   const double E_star = effective_modulus(mp, ms);
   const double M = 4.0 / 3.0 * k_pi * R * R * R * mp.density;
