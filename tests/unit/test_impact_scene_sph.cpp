@@ -75,11 +75,12 @@ TEST(ImpactSceneSph, sph_particle_on_al_picks_the_quarter_sph_on_sph_model) {
   EXPECT_EQ(loaded.scene.impact->model, "sph-3d-quarter");
 }
 
-TEST(ImpactSceneSph, auto_switches_to_sph_above_the_fe_survival_velocity_and_says_why) {
+TEST(ImpactSceneSph, auto_switches_to_sph_above_the_fe_erosion_velocity_and_says_why) {
   EXPECT_EQ(expand_particle_impact(impact(al_on_al(500.0, ""))).choice.model, "fe-axisym");
   const ExpandedImpact fast = expand_particle_impact(impact(al_on_al(501.0, "")));
   EXPECT_EQ(fast.choice.model, "sph-3d-quarter");
-  EXPECT_NE(fast.choice.why.find("fastest the FE particle mesh survives"), std::string::npos)
+  EXPECT_NE(fast.choice.why.find("above which the FE particle's jetting rim erodes"),
+            std::string::npos)
       << fast.choice.why;
   // An explicit FE particle stays FE at any speed.
   EXPECT_EQ(expand_particle_impact(impact(al_on_al(3000.0, "fe"))).choice.model, "fe-axisym");
