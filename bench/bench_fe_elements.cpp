@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "solver/fe/fe_body.hpp"
+#include "tests/support/materials.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -51,6 +52,9 @@
 
 namespace splat {
 namespace {
+
+using test_support::jc_copper;
+using test_support::no_damage;
 
 constexpr double plastic_rate = 1e5;  // 1/s
 constexpr double elastic_rate = 1e3;  // 1/s, reversed every step
@@ -61,23 +65,6 @@ constexpr int plastic_warmup_steps = 200;
 // more near the onset of yield than later.
 constexpr int hex_steps = 200;
 constexpr int quad_steps = 50;
-
-Material copper() {
-  Material m;
-  m.name = "copper";
-  m.density = 8960.0;
-  m.elastic = {124e9, 0.34};
-  m.strength.A = 90e6, m.strength.B = 292e6, m.strength.n = 0.31, m.strength.C = 0.025;
-  m.strength.m = 1.09, m.strength.T_ref = 300.0, m.strength.T_melt = 1356.0;
-  m.thermal.c_p = 385.0;
-  return m;
-}
-
-ModelSwitches no_damage() {
-  ModelSwitches sw;
-  sw.damage = false;
-  return sw;
-}
 
 HexMesh box(int n) {
   HexMesh m;
@@ -160,10 +147,10 @@ Block make_block(bool axisymmetric, bool plastic) {
   const int axial = axisymmetric ? 1 : 2;
   const double rate = plastic ? plastic_rate : elastic_rate;
   if (axisymmetric) {
-    b.body = make_fe_body("block", rectangle(128), copper(), no_damage(), FeSettings{},
+    b.body = make_fe_body("block", rectangle(128), jc_copper(), no_damage(), FeSettings{},
                           Vec3::Zero(), 300.0, 1, b.nodes);
   } else {
-    b.body = make_fe_body("block", box(16), copper(), no_damage(), FeSettings{}, Vec3::Zero(),
+    b.body = make_fe_body("block", box(16), jc_copper(), no_damage(), FeSettings{}, Vec3::Zero(),
                           300.0, 1, b.nodes);
   }
   for (std::size_t n = 0; n < b.nodes.size(); ++n) {

@@ -11,26 +11,13 @@
 #include "solver/fe/fe_body.hpp"
 #include "solver/fe/hex8.hpp"
 #include "solver/fe/quad4_axisym.hpp"
+#include "support/materials.hpp"
 
 namespace splat {
 namespace {
 
-Material copper() {
-  Material m;
-  m.name = "copper";
-  m.density = 8960.0;
-  m.elastic = {124e9, 0.34};
-  m.strength.A = 90e6, m.strength.B = 292e6, m.strength.n = 0.31, m.strength.C = 0.025;
-  m.strength.m = 1.09, m.strength.T_ref = 300.0, m.strength.T_melt = 1356.0;
-  m.thermal.c_p = 385.0;
-  return m;
-}
-
-ModelSwitches no_damage() {
-  ModelSwitches sw;
-  sw.damage = false;
-  return sw;
-}
+using test_support::jc_copper;
+using test_support::no_damage;
 
 Vec3 random_vec(std::mt19937_64& rng, double scale) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -131,8 +118,8 @@ template <class Mesh>
 void check_against_reference(const Mesh& mesh) {
   std::mt19937_64 rng(41);
   NodeSet nodes;
-  FeBody body =
-      make_fe_body("b", mesh, copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes);
+  FeBody body = make_fe_body("b", mesh, jc_copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0,
+                             1, nodes);
   randomise(body, nodes, rng);
   // An inactive element splits the pairs: its neighbours run one at a time.
   erode_element(body, nodes, 7);
@@ -164,8 +151,8 @@ void check_pairing_shift(const Mesh& mesh) {
   std::array<FeBody, 2> body;
   for (int b = 0; b < 2; ++b) {
     std::mt19937_64 rng(44);
-    body[b] = make_fe_body("b", mesh, copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1,
-                           nodes[b]);
+    body[b] = make_fe_body("b", mesh, jc_copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0,
+                           1, nodes[b]);
     randomise(body[b], nodes[b], rng);
     for (Vec3& v : nodes[b].v) v *= 1e2;  // large enough to yield
     if (b == 1) erode_element(body[b], nodes[b], 0);

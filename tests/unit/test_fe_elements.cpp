@@ -17,6 +17,7 @@
 #include "solver/fe/quad4_axisym.hpp"
 #include "solver/material/damage.hpp"
 #include "solver/material/elasticity.hpp"
+#include "support/materials.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -24,6 +25,9 @@
 
 namespace splat {
 namespace {
+
+using test_support::jc_copper;
+using test_support::no_damage;
 
 // Unit-cube natural coordinates of the hexahedron's nodes (mesh.hpp order).
 constexpr double xi_node[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
@@ -161,24 +165,6 @@ Quad4Vectors random_quad(std::mt19937_64& rng, double h, double r_centre) {
   for (int a = 0; a < 4; ++a)
     x[a] = c + A * (0.5 * Vec2(corner[a][0], corner[a][1]) + random_vec(rng, 0.12).head<2>());
   return x;
-}
-
-// Johnson-Cook copper without damage.
-Material copper() {
-  Material m;
-  m.name = "copper";
-  m.density = 8960.0;
-  m.elastic = {124e9, 0.34};
-  m.strength.A = 90e6, m.strength.B = 292e6, m.strength.n = 0.31, m.strength.C = 0.025;
-  m.strength.m = 1.09, m.strength.T_ref = 300.0, m.strength.T_melt = 1356.0;
-  m.thermal.c_p = 385.0;
-  return m;
-}
-
-ModelSwitches no_damage() {
-  ModelSwitches sw;
-  sw.damage = false;
-  return sw;
 }
 
 double rel_error(const Mat3& a, const Mat3& b) {
@@ -619,7 +605,7 @@ TEST(fe_body, lumped_mass_equals_density_times_volume_3d) {
   nodes.f.push_back(Vec3::Zero());
   nodes.mass.push_back(1.0);
   nodes.boundary.push_back(0);
-  const Material cu = copper();
+  const Material cu = jc_copper();
   const FeBody body =
       make_fe_body("box", m, cu, no_damage(), FeSettings{}, Vec3(1, 2, 3), 300.0, 7, nodes);
   ASSERT_EQ(body.node_begin, 1u);
@@ -655,7 +641,7 @@ TEST(fe_body, lumped_mass_per_radian_axisymmetric) {
   std::mt19937_64 rng(22);
   const AxisymMesh m = rect_mesh(5, 3, 0.0, 1e-4, 0.2, rng);
   NodeSet nodes;
-  const Material cu = copper();
+  const Material cu = jc_copper();
   const FeBody body =
       make_fe_body("disc", m, cu, no_damage(), FeSettings{}, Vec3(5, 6, -300), 300.0, 7, nodes);
   double expected = 0.0;
@@ -677,7 +663,7 @@ TEST(fe_body, lumped_mass_per_radian_axisymmetric) {
 TEST(fe_body, initial_random_damage_when_damage_is_on) {
   std::mt19937_64 rng(23);
   const HexMesh m = box_mesh(2, 2, 2, 1e-4, 0.0, rng);
-  Material cu = copper();
+  Material cu = jc_copper();
   cu.damage.initiation = DamageInitiation::johnson_cook;
   cu.damage.initial_random_max = 0.05;
   NodeSet nodes;
@@ -698,21 +684,21 @@ TEST(fe_body, rejects_inverted_elements_and_bad_node_ids) {
   std::swap(m.hexes[1][3], m.hexes[1][7]);
   NodeSet nodes;
   EXPECT_THROW(
-      make_fe_body("box", m, copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes),
+      make_fe_body("box", m, jc_copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes),
       std::invalid_argument);
   AxisymMesh q = rect_mesh(2, 2, 0.0, 1e-4, 0.0, rng);
   q.quads[3][2] = 99;
   NodeSet nodes2;
-  EXPECT_THROW(
-      make_fe_body("disc", q, copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes2),
-      std::invalid_argument);
+  EXPECT_THROW(make_fe_body("disc", q, jc_copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0,
+                            1, nodes2),
+               std::invalid_argument);
 }
 
 TEST(fe_body, rigid_translation_gives_no_force) {
   std::mt19937_64 rng(24);
   const HexMesh m = box_mesh(3, 3, 3, 1e-4, 0.2, rng);
   NodeSet nodes;
-  FeBody body = make_fe_body("box", m, copper(), no_damage(), FeSettings{}, Vec3(100, -50, 700),
+  FeBody body = make_fe_body("box", m, jc_copper(), no_damage(), FeSettings{}, Vec3(100, -50, 700),
                              300.0, 1, nodes);
   const double dt = 1e-9;
   for (std::size_t n = 0; n < nodes.size(); ++n) nodes.x[n] += dt * nodes.v[n];
@@ -732,7 +718,7 @@ TEST(fe_body, erode_element_removes_its_mass_share) {
   settings.erosion = true;
   settings.erosion_min_time_step = 1.0;  // every element fails the time-step criterion
   FeBody body =
-      make_fe_body("box", m, copper(), no_damage(), settings, Vec3(0, 0, 10), 300.0, 1, nodes);
+      make_fe_body("box", m, jc_copper(), no_damage(), settings, Vec3(0, 0, 10), 300.0, 1, nodes);
   const double total = fe_body_mass(body);
   const FeStepResult r = fe_internal_forces(body, nodes, 0.0);
   ASSERT_EQ(r.to_erode, (std::vector<int>{0, 1}));
@@ -758,7 +744,7 @@ TEST(fe_body, internal_energy_matches_force_work) {
   const HexMesh m = box_mesh(3, 3, 3, 1e-4, 0.15, rng);
   NodeSet nodes;
   FeBody body =
-      make_fe_body("box", m, copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes);
+      make_fe_body("box", m, jc_copper(), no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes);
   for (std::size_t n = 0; n < nodes.size(); ++n) nodes.v[n] = Vec3(0, 0, -1e4 * nodes.x[n].z());
   const double dt = 2e-9;
   double work = 0.0, hourglass = 0.0, viscosity = 0.0;
@@ -796,7 +782,7 @@ void check_thread_independence(const Mesh& m, FeSettings settings) {
   for (int t = 0; t < 2; ++t) {
     omp_set_num_threads(t + 1);
     bodies[t] =
-        make_fe_body("b", m, copper(), no_damage(), settings, Vec3::Zero(), 300.0, 3, nodes[t]);
+        make_fe_body("b", m, jc_copper(), no_damage(), settings, Vec3::Zero(), 300.0, 3, nodes[t]);
     std::mt19937_64 rng(31);
     for (auto& v : nodes[t].v) v = random_vec(rng, 20.0);
     for (auto& v : nodes[t].v) v.z() = bodies[t].kind == ElementKind::hex8 ? v.z() : 0.0;

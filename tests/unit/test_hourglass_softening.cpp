@@ -16,20 +16,12 @@
 #include <cstdio>
 
 #include "solver/fe/fe_body.hpp"
+#include "support/materials.hpp"
 
 namespace splat {
 namespace {
 
-Material copper() {
-  Material m;
-  m.name = "copper";
-  m.density = 8960.0;
-  m.elastic = {124e9, 0.34};
-  m.strength.A = 90e6, m.strength.B = 292e6, m.strength.n = 0.31, m.strength.C = 0.025;
-  m.strength.m = 1.09, m.strength.T_ref = 300.0, m.strength.T_melt = 1356.0;
-  m.thermal.c_p = 385.0;
-  return m;
-}
+using test_support::jc_copper;
 
 FeSettings stiffness_hourglass() {
   FeSettings s;
@@ -92,7 +84,7 @@ TEST(hourglass_softening, axisymmetric_element_whose_stiffness_drops_releases_en
   m.quads = {{0, 1, 2, 3}};
   m.node_boundary.assign(4, 0);
   NodeSet nodes;
-  FeBody body = make_fe_body("q", m, copper(), no_damage_evolution(), stiffness_hourglass(),
+  FeBody body = make_fe_body("q", m, jc_copper(), no_damage_evolution(), stiffness_hourglass(),
                              Vec3::Zero(), 300.0, 1, nodes);
   // Hourglass pattern (+1, -1, +1, -1) in z: no mean velocity gradient, and
   // the mean radius (kappa is proportional to it) stays put.
@@ -114,7 +106,7 @@ TEST(hourglass_softening, hexahedron_whose_stiffness_drops_releases_energy) {
   m.hexes = {{0, 1, 3, 2, 4, 5, 7, 6}};
   m.node_boundary.assign(8, 0);
   NodeSet nodes;
-  FeBody body = make_fe_body("h", m, copper(), no_damage_evolution(), stiffness_hourglass(),
+  FeBody body = make_fe_body("h", m, jc_copper(), no_damage_evolution(), stiffness_hourglass(),
                              Vec3::Zero(), 300.0, 1, nodes);
   // x-velocity in the pattern x y z of the node's unit-cube coordinates
   // (signs +-1): the hourglass mode that is the product of all three.
