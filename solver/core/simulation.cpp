@@ -300,6 +300,11 @@ RunSummary Simulation::run() {
         stopped = true;
       } else {
         s.boundary_forces();
+        // The next step's bound, closing speed included, so that the
+        // time-step floor (checks) sees the step the run would take: an
+        // element crushed to a sliver caps it there, not in the CFL bound.
+        s.dt_stable =
+            std::min(s.dt_stable, closing_speed_time_step_bound(s.model, s.closing_speed));
       }
       s.time += s.dt_half;
       ++s.step;
@@ -330,8 +335,7 @@ RunSummary Simulation::run() {
       // final state in the file.
       s.write_snapshot(stopped);
       s.dt_half_prev = s.dt_half;
-      s.dt_half = s.scene.time.stability_coefficient *
-                  std::min(s.dt_stable, closing_speed_time_step_bound(s.model, s.closing_speed));
+      s.dt_half = s.scene.time.stability_coefficient * s.dt_stable;
       if (!s.options.quiet && s.step % 1000 == 0) {
         std::fprintf(stderr, "step %lld t = %.4e s dt = %.3e s E_err = %.2e\n", s.step, s.time,
                      s.dt_half, s.energy.balance_error);

@@ -154,7 +154,7 @@ TEST(ContactImpact, elastic_sphere_bounce_penalty) {
 // the sphere's radius, a quarter model). The coarse hexahedra's own energy
 // bookkeeping limits the tolerance here: the same sphere on the existing
 // rigid wall (no contact code) ends with a balance error of +4.6 %; with
-// Lagrange contact +1.8 % (measured), so 3 % is stated.
+// Lagrange contact +2.2 % (measured), so 3 % is stated.
 TEST(ContactImpact, elastic_sphere_bounce_lagrange_3d) {
   const RunSummary s = run_scene(sphere_scene("lagrange", "elastic_sphere_bounce_3d"));
   ASSERT_EQ(s.outcome, RunOutcome::finished) << s.reason;
@@ -165,14 +165,15 @@ TEST(ContactImpact, elastic_sphere_bounce_lagrange_3d) {
       e.balance_error, e.contact_work / e.initial_total, s.bodies[0].centroid_velocity.z(),
       s.interfaces[0].max_pairs_in_contact, s.interfaces[0].max_solver_iterations);
   EXPECT_LT(std::abs(e.balance_error), 0.03);
-  // Split impulse: a pair that lands does the work p C v_{n+1/2} = -p g_n / dt
-  // <= 0, and a pair already penetrating is only stopped (C v = 0, no work)
-  // and moved out through positions, so the contact never makes energy: its
+  // A pair that lands books the kinetic energy its row loses,
+  // p C (v_before + v_after) / 2 <= 0, a pair that stays closed p C v_after
+  // (zero), and a pair already penetrating is only stopped and moved out
+  // through positions (split impulse), so the contact never makes energy: its
   // work is the loss of the node-level landings on the faceted sphere
-  // (measured -1.26e-3 of E0; the velocity push-out it replaced booked
-  // positive work that hid part of it, |work| < 1e-3).
+  // (measured -2.06e-3 of E0; -1.26e-3 when a landing booked only
+  // p C v_after, which missed part of it), a small fraction of E0.
   EXPECT_LE(e.contact_work, 0.0);
-  EXPECT_LT(-e.contact_work / e.initial_total, 2e-3);
+  EXPECT_LT(-e.contact_work / e.initial_total, 3e-3);
   EXPECT_EQ(s.interfaces[0].pairs_in_contact, 0);
   EXPECT_GT(s.bodies[0].centroid_velocity.z(), 0.9 * 20.0);
 }

@@ -40,7 +40,10 @@ void expect_finite(const json& j, const std::string& where) {
 }
 
 json run(const std::vector<std::string>& sets) {
-  const LoadedScene loaded = load_scene(scene_file, sets);
+  LoadedScene loaded = load_scene(scene_file, sets);
+  // A hang guard: every run here takes a few seconds; one that creeps on
+  // ends timed-out at this limit and fails the outcome check below.
+  loaded.scene.time.wall_clock_limit = 60.0;
   SimulationOptions options;
   options.threads = 1;
   Simulation sim(loaded.scene, loaded.resolved, options);
@@ -78,6 +81,13 @@ TEST(impact_extremes, slow_impacts_rebound) {
 
 TEST(impact_extremes, fastest_impact_ends_with_a_stated_outcome) {
   run({"/particle_impact/velocity=3000"});
+  // The activation variant (no link erosion) crushes an element to a sliver
+  // at 3000 m/s: the step the run takes (the closing-speed bound on that
+  // element's length) falls to 7e-22 s. The time-step floor must end it
+  // (time-step collapse) rather than let it creep on for millions of steps.
+  const json s =
+      run({"/particle_impact/velocity=3000", "/particle_impact/adhesion/D_adh_max=null"});
+  EXPECT_LT(s["steps"].get<long long>(), 100000) << s["reason"];
 }
 
 TEST(impact_extremes, adhesion_energy_zero_and_very_large) {
