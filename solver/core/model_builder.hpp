@@ -16,9 +16,10 @@
 namespace splat {
 
 struct RigidWall {
-  Vec3 point = Vec3::Zero();    // internal frame, m
-  Vec3 normal = Vec3::UnitZ();  // internal frame, unit, into the allowed side
-  std::vector<int> nodes;       // nodes the wall acts on
+  Vec3 point = Vec3::Zero();       // internal frame, m
+  Vec3 normal = Vec3::UnitZ();     // internal frame, unit, into the allowed side
+  std::vector<int> nodes;          // nodes the wall acts on
+  std::vector<std::uint8_t> held;  // per node of `nodes`: stopped by the wall in the last step
 };
 
 // A boundary face (3D quad) or segment (axisymmetric, count 2) with the

@@ -66,16 +66,28 @@ void Simulation::Impl::update_velocities(bool first) {
     }
     n.v[i] = v;
   }
-  for (const RigidWall& w : model.walls) {
-    for (int i : w.nodes) {
+  // A node the wall held in the last step books the reaction's work over the
+  // coming displacement, as the constraints above; a node landing on the wall
+  // in this step makes a node-level plastic impact and books the kinetic
+  // energy it loses, m dv (v_before + v_after) / 2 along the normal (as the
+  // Lagrange contact does, contact_interface.hpp).
+  for (RigidWall& w : model.walls) {
+    w.held.resize(w.nodes.size(), 0);
+    for (std::size_t k = 0; k < w.nodes.size(); ++k) {
+      const int i = w.nodes[k];
       const double m = n.mass[i];
-      if (m <= 0.0) continue;
-      const double gap = (n.x[i] - w.point).dot(w.normal) + dt_half * n.v[i].dot(w.normal);
-      if (gap < 0.0) {
-        const double dv = -gap / dt_half;  // lands the node on the wall
-        n.v[i] += dv * w.normal;
-        wall_work += m * dv * n.v[i].dot(w.normal) * dt_half / dt_v;
+      const double v_before = n.v[i].dot(w.normal);
+      const double gap = (n.x[i] - w.point).dot(w.normal) + dt_half * v_before;
+      if (m <= 0.0 || !(gap < 0.0)) {
+        w.held[k] = 0;
+        continue;
       }
+      const double dv = -gap / dt_half;  // lands the node on the wall
+      n.v[i] += dv * w.normal;
+      const double v_after = v_before + dv;
+      wall_work +=
+          w.held[k] ? m * dv * v_after * dt_half / dt_v : m * dv * 0.5 * (v_before + v_after);
+      w.held[k] = 1;
     }
   }
   energy.external_work += ext_work * scale();
