@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/common/simd_math.hpp"
 #include "solver/material/material.hpp"
 
 namespace splat {
@@ -36,9 +37,9 @@ inline constexpr double min_failure_strain = 1e-6;  // -
 inline double jc_failure_strain(const JohnsonCookFailureParams& d, const JohnsonCookParams& jc,
                                 bool rate_term, bool thermal_term, double triaxiality,
                                 double eps_dot_p, double T) {
-  double eps_f = d.D1 + d.D2 * std::exp(d.D3 * triaxiality);
+  double eps_f = d.D1 + d.D2 * simd::exp(d.D3 * triaxiality);
   if (rate_term && eps_dot_p > jc.eps_dot_0)
-    eps_f *= 1.0 + d.D4 * std::log(eps_dot_p / jc.eps_dot_0);
+    eps_f *= 1.0 + d.D4 * simd::log(eps_dot_p / jc.eps_dot_0);
   if (thermal_term) {
     const double t_star = std::clamp((T - jc.T_ref) / (jc.T_melt - jc.T_ref), 0.0, 1.0);
     eps_f *= 1.0 + d.D5 * t_star;
