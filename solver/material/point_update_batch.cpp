@@ -1,6 +1,7 @@
 #include "solver/material/point_update_batch.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "solver/common/simd_math.hpp"
 #include "solver/material/eos.hpp"
@@ -15,7 +16,7 @@ namespace splat {
 
 namespace {
 
-using V = simd::v4d;  // 4 points per block (8 measured slower on AVX2; see the benchmark)
+using V = simd::v8d;  // 8 points per block
 using M = simd::mask_t<V>;
 constexpr int W = simd::lanes<V>;
 
@@ -31,6 +32,12 @@ constexpr int max_vector_iterations = 12;
 }
 [[gnu::always_inline]] inline M mfalse() {
   return simd::broadcast_int<V>(0);
+}
+
+// The vector {field(0), ..., field(W - 1)}, built in registers.
+template <class F, std::size_t... L>
+[[gnu::always_inline]] inline V make_lanes(F field, std::index_sequence<L...>) {
+  return V{field(L)...};
 }
 
 // The result of johnson_cook_return in lanes; `redo` marks lanes that left
@@ -140,32 +147,37 @@ struct ReturnLanes {
                                                 const double* length, PointUpdateResult* out) {
   using simd::select;
   // Gather; padding lanes repeat the last point and are not written back.
-  V s_old[9], de[9], p_old, J_old, J_n, e_old, eps_p, eps_dot_p, T, D, sy_static, hardening, scale,
-      sy_peak, sy_static_peak, work;
+  // Each vector is built from its lanes in registers (lane stores into a
+  // vector in memory followed by a vector load stall store forwarding).
+  const PointState* st_l[W];
+  const double* d_l[W];
   for (int l = 0; l < W; ++l) {
     const std::size_t k = k0 + static_cast<std::size_t>(std::min(l, count - 1));
-    const PointState& st = states[index[k]];
-    const double* s = st.s.data();
-    const double* d = d_eps[k].data();
-    for (int i = 0; i < 9; ++i) {
-      s_old[i][l] = s[i];
-      de[i][l] = d[i];
-    }
-    p_old[l] = st.p;
-    J_old[l] = st.J;
-    J_n[l] = J_new[k];
-    e_old[l] = st.e;
-    eps_p[l] = st.eps_p;
-    eps_dot_p[l] = st.eps_dot_p;
-    T[l] = st.T;
-    D[l] = st.D;
-    sy_static[l] = st.sigma_y_static;
-    hardening[l] = st.hardening;
-    scale[l] = st.strength_scale;
-    sy_peak[l] = st.sigma_y_peak;
-    sy_static_peak[l] = st.sigma_y_static_peak;
-    work[l] = st.plastic_work;
+    st_l[l] = &states[index[k]];
+    d_l[l] = d_eps[k].data();
   }
+#define SPLAT_LANES(expr) \
+  make_lanes([&](std::size_t l) { return expr; }, std::make_index_sequence<W>())
+  V s_old[9], de[9];
+  for (int i = 0; i < 9; ++i) {
+    s_old[i] = SPLAT_LANES(st_l[l]->s.data()[i]);
+    de[i] = SPLAT_LANES(d_l[l][i]);
+  }
+  const V p_old = SPLAT_LANES(st_l[l]->p);
+  const V J_old = SPLAT_LANES(st_l[l]->J);
+  const V J_n = SPLAT_LANES(J_new[k0 + std::min(l, static_cast<std::size_t>(count - 1))]);
+  const V e_old = SPLAT_LANES(st_l[l]->e);
+  const V eps_p = SPLAT_LANES(st_l[l]->eps_p);
+  const V eps_dot_p = SPLAT_LANES(st_l[l]->eps_dot_p);
+  const V T = SPLAT_LANES(st_l[l]->T);
+  const V D = SPLAT_LANES(st_l[l]->D);
+  const V sy_static = SPLAT_LANES(st_l[l]->sigma_y_static);
+  const V hardening = SPLAT_LANES(st_l[l]->hardening);
+  const V scale = SPLAT_LANES(st_l[l]->strength_scale);
+  const V sy_peak = SPLAT_LANES(st_l[l]->sigma_y_peak);
+  const V sy_static_peak = SPLAT_LANES(st_l[l]->sigma_y_static_peak);
+  const V work = SPLAT_LANES(st_l[l]->plastic_work);
+#undef SPLAT_LANES
 
   // Elastic predictor and yield check (update_point).
   const V G_d = (1.0 - D) * mc.G;

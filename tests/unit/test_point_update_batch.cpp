@@ -20,7 +20,7 @@ namespace {
 
 using namespace splat;
 
-constexpr int W = 4;  // lanes of update_points (point_update_batch.cpp)
+constexpr int W = 8;  // lanes of update_points (point_update_batch.cpp)
 
 bool same_bits(double a, double b) {
   return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
