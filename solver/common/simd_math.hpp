@@ -169,7 +169,7 @@ template <class T>
   if constexpr (std::is_same_v<T, double>) {
     return std::sqrt(x);
   } else {
-    T r;
+    T r = x;
     for (int l = 0; l < lanes<T>; ++l) r[l] = __builtin_sqrt(x[l]);
     return r;
   }

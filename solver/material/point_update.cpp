@@ -59,7 +59,8 @@ void update_damage(const Material& m, const ModelSwitches& sw, PointState& st, d
   const double eps_dot = dp / dt;
   double dp_after_init = 0.0;
   if (st.eps_p_init < 0.0) {
-    const double q = von_mises(st.s);
+    // Same operations as the initiation in lanes in update_points.
+    const double q = point_kernel::von_mises9(st.s.data());
     double eps_f = 0.0;
     if (dm.initiation == DamageInitiation::johnson_cook) {
       const double eta = q > 0.0 ? -st.p / q : 0.0;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "solver/common/simd_math.hpp"
+#include "solver/material/damage.hpp"
 #include "solver/material/eos.hpp"
 #include "solver/material/johnson_cook.hpp"
 #include "solver/material/point_update_kernel.hpp"
@@ -177,6 +178,8 @@ struct ReturnLanes {
   const V sy_peak = SPLAT_LANES(st_l[l]->sigma_y_peak);
   const V sy_static_peak = SPLAT_LANES(st_l[l]->sigma_y_static_peak);
   const V work = SPLAT_LANES(st_l[l]->plastic_work);
+  const V omega = SPLAT_LANES(st_l[l]->omega);
+  const V eps_p_init = SPLAT_LANES(st_l[l]->eps_p_init);
 #undef SPLAT_LANES
 
   // Elastic predictor and yield check (update_point).
@@ -228,8 +231,25 @@ struct ReturnLanes {
   const V sy_peak_new = simd::max<V>(sy_peak, sy_new);
   const V sy_static_peak_new = simd::max<V>(sy_static_peak, sy_static_new);
 
-  // Scatter.
+  // Johnson-Cook damage initiation in lanes (update_damage) for the points
+  // not yet initiated that stay so; the others (initiation in this step,
+  // evolution, shear initiation) finish in finish_plastic_step.
   const bool damage_on = sw.damage && m.damage.initiation != DamageInitiation::none;
+  M damage_scalar = damage_on ? flowed : mfalse();
+  V omega_new = omega;
+  if (damage_on && m.damage.initiation == DamageInitiation::johnson_cook && simd::any(flowed)) {
+    const M fresh = simd::mask_and(flowed, eps_p_init < 0.0);
+    const V q_new = point_kernel::von_mises9(s);
+    const V eta = select<V>(q_new > 0.0, -p / q_new, bc(0.0));
+    const V eps_f = jc_failure_strain_t<V>(m.damage.jc, m.strength, sw.rate_hardening,
+                                           sw.thermal_softening, eta, dp / dt, T_new);
+    const V omega_step = omega + dp / eps_f;
+    const M stays = simd::mask_and(fresh, omega_step < 1.0);
+    omega_new = select<V>(stays, omega_step, omega);
+    damage_scalar = simd::mask_and(flowed, simd::mask_not(stays));
+  }
+
+  // Scatter.
   for (int l = 0; l < count; ++l) {
     const std::size_t k = k0 + static_cast<std::size_t>(l);
     PointState& st = states[index[k]];
@@ -249,12 +269,13 @@ struct ReturnLanes {
     st.plastic_work = work_new[l];
     out[k].iterations = plastic[l] ? static_cast<int>(rm.iterations[l]) : 0;
     out[k].converged = true;
-    if (damage_on && flowed[l]) {
+    if (damage_scalar[l]) {
       st.sigma_y = sy_increment[l];
       point_kernel::finish_plastic_step(m, sw, st, dp[l], dt, length[k], scale[l], rm.rate[l],
                                         heated[l] != 0);
       continue;
     }
+    st.omega = omega_new[l];
     st.strength_scale = end_scale[l];
     st.sigma_y_static = sy_static_new[l];
     st.sigma_y = sy_new[l];

@@ -64,7 +64,7 @@ Mat3 random_strain(std::mt19937_64& rng, double magnitude) {
 
 // A state reached by a random loading history (so the cached fields are
 // consistent), then one of the edge cases.
-enum class Edge { none, virgin, near_melt, molten, near_D_max };
+enum class Edge { none, virgin, near_melt, molten, near_D_max, near_initiation };
 
 PointState make_state(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
                       std::mt19937_64& rng, Edge edge, double dt) {
@@ -89,6 +89,7 @@ PointState make_state(const Material& m, const MaterialConstants& mc, const Mode
     st.strength_scale = (1.0 - st.D) * jc_thermal_factor(jc, sw.thermal_softening, st.T);
     st.sigma_y_static = st.strength_scale * st.hardening;
   }
+  if (edge == Edge::near_initiation && st.eps_p_init < 0.0) st.omega = 1.0 - 1e-4 * u(rng);
   return st;
 }
 
@@ -172,11 +173,12 @@ TEST(update_points, bit_identical_to_update_point_for_every_block_size) {
 }
 
 TEST(update_points, bit_identical_at_the_edges_of_the_return_mapping) {
-  const Edge edges[] = {Edge::virgin, Edge::near_melt, Edge::molten, Edge::near_D_max};
+  const Edge edges[] = {Edge::virgin, Edge::near_melt, Edge::molten, Edge::near_D_max,
+                        Edge::near_initiation};
   const char* names[] = {"first yield from eps_p = 0", "T near T_melt", "T above T_melt",
-                         "D near D_max"};
+                         "D near D_max", "damage initiation in the step"};
   for (const Case& c : cases()) {
-    for (int e = 0; e < 4; ++e) {
+    for (int e = 0; e < 5; ++e) {
       // dt = 1e-9: plastic rates far above eps_dot_0; dt = 10 s: below it.
       for (double dt : {1e-9, 10.0}) {
         EXPECT_EQ(run_case(c, 64, 100 + static_cast<std::uint64_t>(e), dt, edges[e]), 0)
