@@ -286,10 +286,19 @@ struct ReturnLanes {
 
 }  // namespace
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) void update_points(
-    const Material& m, const MaterialConstants& mc, const ModelSwitches& sw, PointState* states,
-    const int* index, std::size_t n, const Mat3* d_eps, const double* J_new, double dt,
-    const double* length, PointUpdateResult* out) {
+// SPLAT_BATCH_SINGLE_TARGET builds one variant for the compiler's flags
+// instead (to check the SSE2 and AVX2 code on an AVX-512 machine by hand:
+// see the batch test's header).
+#ifdef SPLAT_BATCH_SINGLE_TARGET
+#define SPLAT_BATCH_CLONES
+#else
+#define SPLAT_BATCH_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
+
+SPLAT_BATCH_CLONES void update_points(const Material& m, const MaterialConstants& mc,
+                                      const ModelSwitches& sw, PointState* states, const int* index,
+                                      std::size_t n, const Mat3* d_eps, const double* J_new,
+                                      double dt, const double* length, PointUpdateResult* out) {
   for (std::size_t k0 = 0; k0 < n; k0 += W) {
     const int count = static_cast<int>(std::min<std::size_t>(W, n - k0));
     update_block(m, mc, sw, states, index, k0, count, d_eps, J_new, dt, length, out);
