@@ -180,7 +180,6 @@ struct ReturnLanes {
   const V work = SPLAT_LANES(st_l[l]->plastic_work);
   const V omega = SPLAT_LANES(st_l[l]->omega);
   const V eps_p_init = SPLAT_LANES(st_l[l]->eps_p_init);
-#undef SPLAT_LANES
 
   // Elastic predictor and yield check (update_point).
   const V G_d = (1.0 - D) * mc.G;
@@ -211,8 +210,7 @@ struct ReturnLanes {
   p = apply_tension_damage_t<V>(p, D);
   const V e_new = e_star - 0.5 * J_mid * p * tr;
 
-  // Heating and the strength of the end state (damage unchanged here; lanes
-  // with damage on finish in finish_plastic_step).
+  // Heating.
   const M flowed = dp > 0.0;
   const V hardening_new = select<V>(flowed, rm.hard, hardening);
   const V sy_increment = scale * rm.hard_rate;
@@ -221,33 +219,66 @@ struct ReturnLanes {
   const M heated =
       simd::mask_and(sw.adiabatic_heating ? mtrue() : mfalse(), simd::mask_and(flowed, w > 0.0));
   const V T_new = select<V>(heated, T + mc.chi * w * J_n / (mc.rho0 * mc.c_p), T);
+
+  // Damage (update_damage) in lanes: Johnson-Cook initiation for the points
+  // not yet initiated that stay so, and the evolution of points initiated in
+  // an earlier step. Points whose damage starts in this step, and shear
+  // initiation (principal stresses), finish in finish_plastic_step.
+  const bool damage_on = sw.damage && m.damage.initiation != DamageInitiation::none;
+  M damage_scalar = damage_on ? flowed : mfalse();
+  V omega_new = omega;
+  V D_new = D;
+  if (damage_on && simd::any(flowed)) {
+    const DamageParams& dm = m.damage;
+    const M fresh = simd::mask_and(flowed, eps_p_init < 0.0);
+    const M initiated = simd::mask_and(flowed, simd::mask_not(eps_p_init < 0.0));
+    M in_lanes = initiated;
+    if (dm.initiation == DamageInitiation::johnson_cook) {
+      const V q_new = point_kernel::von_mises9(s);
+      const V eta = select<V>(q_new > 0.0, -p / q_new, bc(0.0));
+      const V eps_f = jc_failure_strain_t<V>(dm.jc, m.strength, sw.rate_hardening,
+                                             sw.thermal_softening, eta, dp / dt, T_new);
+      const V omega_step = omega + dp / eps_f;
+      const M stays = simd::mask_and(fresh, omega_step < 1.0);
+      omega_new = select<V>(stays, omega_step, omega);
+      in_lanes = simd::mask_or(in_lanes, stays);
+    }
+    V D_evolved = D;
+    switch (dm.evolution) {
+      case DamageEvolution::instant:
+        D_evolved = bc(dm.D_max);
+        break;
+      case DamageEvolution::plastic_strain: {
+        const V span = dm.eps_p_max - eps_p_init;
+        D_evolved = select<V>(span > 0.0, D + dp / span, bc(dm.D_max));
+        break;
+      }
+      case DamageEvolution::fracture_energy: {
+        const V length_l =
+            SPLAT_LANES(length[k0 + std::min(l, static_cast<std::size_t>(count - 1))]);
+        D_evolved = D + dm.D_max * sy_increment * dp * length_l / dm.G_f;
+        break;
+      }
+    }
+    // std::min(std::max(D, D_old), D_max)
+    D_new = select<V>(initiated, simd::min<V>(simd::max<V>(D_evolved, D), bc(dm.D_max)), D);
+    damage_scalar = simd::mask_and(flowed, simd::mask_not(in_lanes));
+  }
+
+  // The strength of the end state: temperature or damage moved.
+  const M moved = simd::mask_or(heated, D_new != D);
   V end_scale = scale;
-  if (simd::any(heated)) {
+  if (simd::any(moved)) {
     end_scale = select<V>(
-        heated, (1.0 - D) * jc_thermal_factor_t<V>(m.strength, sw.thermal_softening, T_new), scale);
+        moved, (1.0 - D_new) * jc_thermal_factor_t<V>(m.strength, sw.thermal_softening, T_new),
+        scale);
   }
   const V sy_static_new = select<V>(flowed, end_scale * hardening_new, sy_static);
   const V sy_new = select<V>(flowed, sy_static_new * rm.rate, sy_static);
   const V sy_peak_new = simd::max<V>(sy_peak, sy_new);
   const V sy_static_peak_new = simd::max<V>(sy_static_peak, sy_static_new);
 
-  // Johnson-Cook damage initiation in lanes (update_damage) for the points
-  // not yet initiated that stay so; the others (initiation in this step,
-  // evolution, shear initiation) finish in finish_plastic_step.
-  const bool damage_on = sw.damage && m.damage.initiation != DamageInitiation::none;
-  M damage_scalar = damage_on ? flowed : mfalse();
-  V omega_new = omega;
-  if (damage_on && m.damage.initiation == DamageInitiation::johnson_cook && simd::any(flowed)) {
-    const M fresh = simd::mask_and(flowed, eps_p_init < 0.0);
-    const V q_new = point_kernel::von_mises9(s);
-    const V eta = select<V>(q_new > 0.0, -p / q_new, bc(0.0));
-    const V eps_f = jc_failure_strain_t<V>(m.damage.jc, m.strength, sw.rate_hardening,
-                                           sw.thermal_softening, eta, dp / dt, T_new);
-    const V omega_step = omega + dp / eps_f;
-    const M stays = simd::mask_and(fresh, omega_step < 1.0);
-    omega_new = select<V>(stays, omega_step, omega);
-    damage_scalar = simd::mask_and(flowed, simd::mask_not(stays));
-  }
+#undef SPLAT_LANES
 
   // Scatter.
   for (int l = 0; l < count; ++l) {
@@ -276,6 +307,7 @@ struct ReturnLanes {
       continue;
     }
     st.omega = omega_new[l];
+    st.D = D_new[l];
     st.strength_scale = end_scale[l];
     st.sigma_y_static = sy_static_new[l];
     st.sigma_y = sy_new[l];

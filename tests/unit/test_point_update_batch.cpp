@@ -110,6 +110,8 @@ std::vector<Case> cases() {
   const Material al = load_material("al-thesis");  // shear damage initiation
   Material cu_mg = cu;
   cu_mg.eos.model = EosModel::mie_gruneisen;
+  Material cu_instant = cu;
+  cu_instant.damage.evolution = DamageEvolution::instant;
   Material al_energy = al;
   al_energy.damage.evolution = DamageEvolution::fracture_energy;
   al_energy.damage.G_f = 1e3;
@@ -122,6 +124,7 @@ std::vector<Case> cases() {
   c.push_back({cu, all, "cu-thesis, JC damage"});
   c.push_back({cu_mg, all, "cu-thesis, Mie-Grueneisen"});
   c.push_back({cu_mg, test_support::no_damage(), "cu-thesis, Mie-Grueneisen, no damage"});
+  c.push_back({cu_instant, all, "cu-thesis, instant damage"});
   c.push_back({al, all, "al-thesis, shear damage"});
   c.push_back({al_energy, all, "al, fracture energy, Mie-Grueneisen"});
   c.push_back({cu, off, "cu-thesis, all switches off"});
