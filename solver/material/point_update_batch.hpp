@@ -15,9 +15,12 @@ namespace splat {
 // states[index[k]], d_eps[k], J_new[k], dt, length[k]) would; out[k] its
 // result. The index[k] must be distinct (each state is read once, then
 // written once). Lanes that need update_point's rare paths (no strength left,
-// a return that has not converged within a few vector iterations) are redone
-// by update_point itself; damage initiation and evolution run per point in
-// scalar code shared with update_point.
+// a return that has not converged within 12 vector iterations) are redone by
+// update_point itself from the untouched state. Damage runs in lanes for
+// Johnson-Cook initiation without initiation in the step and for the
+// evolution of points initiated earlier; initiation inside the step and shear
+// initiation (principal stresses) run per point in finish_plastic_step, the
+// scalar code update_point itself uses.
 void update_points(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
                    PointState* states, const int* index, std::size_t n, const Mat3* d_eps,
                    const double* J_new, double dt, const double* length, PointUpdateResult* out);
