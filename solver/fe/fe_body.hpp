@@ -169,6 +169,11 @@ FeBody make_fe_body(const std::string& name, const AxisymMesh& mesh, const Mater
 // taken over fixed blocks of elements combined in block order).
 FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt);
 
+// The same step with every element on its own (one element, one
+// update_point call at a time): the slow obvious reference that the phased,
+// lane-wide loop of fe_internal_forces must match to the bit.
+FeStepResult fe_internal_forces_one_by_one(FeBody& body, NodeSet& nodes, double dt);
+
 // What removing one element takes out of the energy budget (2D: per radian).
 struct ErodedEnergy {
   double internal = 0.0;  // V0 e, J
