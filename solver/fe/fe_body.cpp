@@ -90,7 +90,8 @@ FeBody start_body(const std::string& name, ElementKind kind, const Material& mat
 }
 
 // Per-element arrays sized and initialised once the connectivity is known;
-// then the CSR node -> (element * 8 + local node) adjacency, in element order.
+// then the CSR node -> (element * 8 + local node) adjacency, in element order
+// (solver/contact reads it too).
 void finish_body(FeBody& body, NodeSet& nodes, double temperature, unsigned long long seed) {
   const std::size_t ne = body.num_elements();
   const int npe = body.nodes_per_element();
@@ -106,9 +107,7 @@ void finish_body(FeBody& body, NodeSet& nodes, double temperature, unsigned long
   body.hg.assign(ne, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
   body.hg_kappa.assign(ne, 0.0);
   body.active.assign(ne, 1);
-  std::array<Vec3, 8> zero;
-  zero.fill(Vec3::Zero());
-  body.elem_force.assign(ne, zero);
+  body.elem_force.assign(ne * static_cast<std::size_t>(npe), Vec3::Zero());
 
   const std::size_t nn = body.node_end - body.node_begin;
   body.node_elem_offsets.assign(nn + 1, 0);
@@ -251,13 +250,21 @@ inline bool to_be_eroded(const FeBody& body, std::size_t e, double V, double dt_
   return s.erosion_min_time_step > 0.0 && dt_e < s.erosion_min_time_step;
 }
 
+// Element e's nodal forces, nodes_per_element() of them.
+inline Vec3* element_forces(FeBody& body, std::size_t e) {
+  return &body.elem_force[e * static_cast<std::size_t>(body.nodes_per_element())];
+}
+inline void zero_forces(FeBody& body, std::size_t e) {
+  std::fill_n(element_forces(body, e), body.nodes_per_element(), Vec3::Zero());
+}
+
 // Books an element's step whose forces the caller has written to
 // elem_force[e]: an element flagged for erosion exerts no force (they are
 // zeroed) and sets no time-step bound (it is removed before the next step).
 inline void finish_element(FeBody& body, std::size_t e, double V, double dt_e, double q_power,
                            double hourglass_power, BlockSums& sums, std::vector<int>& erode) {
   if (to_be_eroded(body, e, V, dt_e, sums)) {
-    body.elem_force[e].fill(Vec3::Zero());
+    zero_forces(body, e);
     erode.push_back(static_cast<int>(e));
     return;
   }
@@ -273,7 +280,7 @@ inline void finish_element(FeBody& body, std::size_t e, double V, const Material
 // An element with non-positive volume: no force, no material update.
 inline void inverted_element(FeBody& body, std::size_t e, BlockSums& sums,
                              std::vector<int>& erode) {
-  body.elem_force[e].fill(Vec3::Zero());
+  zero_forces(body, e);
   if (to_be_eroded(body, e, 0.0, infinity, sums)) erode.push_back(static_cast<int>(e));
 }
 
@@ -323,7 +330,7 @@ void hex_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, B
     hg_power = hex8_hourglass_viscous(qdot, a_h, Q);
   }
   const Hex8Field f = hex8_forces_cm(ms.sigma, g, xm, Q);
-  std::array<Vec3, 8>& out = body.elem_force[e];
+  Vec3* out = element_forces(body, e);
   for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], f.u[2][a]);
   finish_element(body, e, V, ms, hg_power, sums, erode);
 }
@@ -374,7 +381,7 @@ void quad_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, 
     const double a_h = quad4_axisym_viscous_hourglass_coefficient(c_hg, rho, ms.c, g.rbar, g.area);
     hg_power = quad4_axisym_hourglass_viscous_cm(gamma, v, a_h, f);
   }
-  std::array<Vec3, 8>& out = body.elem_force[e];
+  Vec3* out = element_forces(body, e);
   for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], 0.0);
   finish_element(body, e, V, ms, hg_power, sums, erode);
 }
@@ -669,7 +676,7 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
       if (!s.real(g, l)) continue;
       const int p = g * W + l;
       s.hg_power[p] = power[l];
-      std::array<Vec3, 8>& out = body.elem_force[std::size_t(s.element[p])];
+      Vec3* out = element_forces(body, std::size_t(s.element[p]));
       for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], f.u[2][a][l]);
     }
   }
@@ -784,7 +791,7 @@ SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std:
       if (!s.real(g, l)) continue;
       const int p = g * W + l;
       s.hg_power[p] = power[l];
-      std::array<Vec3, 8>& out = body.elem_force[std::size_t(s.element[p])];
+      Vec3* out = element_forces(body, std::size_t(s.element[p]));
       for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], 0.0);
     }
   }
@@ -907,6 +914,7 @@ FeStepResult internal_forces(FeBody& body, NodeSet& nodes, double dt, bool lanes
 
   const long long first = static_cast<long long>(body.node_begin);
   const long long last = static_cast<long long>(body.node_end);
+  const int shift = hex ? 3 : 2;  // e * npe = e << shift
 
   // One parallel region (one fork and join per step) for the element loop
   // and the node gather, which waits for it at the implicit barrier.
@@ -934,9 +942,9 @@ FeStepResult internal_forces(FeBody& body, NodeSet& nodes, double dt, bool lanes
       const int end = body.node_elem_offsets[local + 1];
       Vec3 sum = Vec3::Zero();
       for (int k = begin; k < end; ++k) {
-        const int entry = body.node_elem_entries[static_cast<std::size_t>(k)];
-        const std::size_t e = static_cast<std::size_t>(entry >> 3);
-        if (body.active[e]) sum += body.elem_force[e][static_cast<std::size_t>(entry & 7)];
+        const std::size_t entry = std::size_t(body.node_elem_entries[static_cast<std::size_t>(k)]);
+        const std::size_t e = entry >> 3;
+        if (body.active[e]) sum += body.elem_force[(e << shift) + (entry & 7)];
       }
       nodes.f[static_cast<std::size_t>(n)] += sum;
     }
@@ -981,7 +989,7 @@ ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e) {
   }
   out.internal = body.volume0[k] * body.state[k].e;
   out.mass = body.element_mass[k];
-  body.elem_force[k].fill(Vec3::Zero());
+  zero_forces(body, k);
   body.q[k] = 0.0;
   return out;
 }
