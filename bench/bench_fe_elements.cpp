@@ -29,7 +29,16 @@
 //                             thread gives on an idle machine (work balance
 //                             and the serial parts, not the scheduling delays
 //                             of a loaded machine);
-//   plastic_fraction          elements whose last step was plastic.
+//   plastic_fraction          elements whose last step was plastic;
+//   material_cpu_ns_per_element_step, kernel_cpu_ns_per_element_step
+//                             (1 thread) the split of cpu_ns_per_element_step:
+//                             update_point alone on a copy of the block's
+//                             states taken before the timed steps, as many
+//                             steps with the same strain increments (as
+//                             *_material_only), and the rest (element work:
+//                             kinematics, rotation, bulk viscosity, hourglass,
+//                             forces, node gather). A batched material update
+//                             replaces the first; the second stays.
 // The *_material_only benchmarks time the material kernel alone
 // (update_point on the same states with the same strain increment, one
 // thread) to give the split between the kernel and the element work.
@@ -189,9 +198,28 @@ void per_unit_counters(benchmark::State& state, const char* unit, double cpu, do
   state.counters[std::string("wall_ns_per_") + unit] = 1e9 * wall / n;
 }
 
+// CPU time of `steps` material updates of every element of a copy of `b`
+// (update_point with the block's uniform strain increment, as run_material), s.
+double material_cpu_seconds(Block b, bool plastic, benchmark::IterationCount steps) {
+  FeBody& body = b.body;
+  const double cpu0 = process_cpu_seconds();
+  for (benchmark::IterationCount k = 0; k < steps; ++k) {
+    const Mat3 D = 0.5 * (b.L + b.L.transpose());
+    for (std::size_t e = 0; e < body.num_elements(); ++e) {
+      PointUpdateResult r =
+          update_point(body.material, body.constants, body.switches, body.state[e], b.dt * D,
+                       body.volume[e] / body.volume0[e], b.dt, body.char_length[e]);
+      benchmark::DoNotOptimize(r);
+    }
+    if (!plastic) b.L = -b.L;
+  }
+  return process_cpu_seconds() - cpu0;
+}
+
 void run_internal_forces(benchmark::State& state, bool axisymmetric, bool plastic) {
   const int threads = set_threads(state);
   Block b = make_block(axisymmetric, plastic);
+  const Block copy = b;
   int iterations = 0;
   const std::vector<double> team0 = thread_cpu_seconds(threads);
   const double cpu0 = process_cpu_seconds(), wall0 = wall_seconds();
@@ -215,6 +243,13 @@ void run_internal_forces(benchmark::State& state, bool axisymmetric, bool plasti
     state.SkipWithError(plastic ? "not every element yielded" : "an element yielded");
   }
   per_unit_counters(state, "element_step", cpu, wall, threads, b.body.num_elements());
+  if (threads == 1) {
+    const double material = material_cpu_seconds(copy, plastic, state.iterations());
+    const double n =
+        static_cast<double>(state.iterations()) * static_cast<double>(b.body.num_elements());
+    state.counters["material_cpu_ns_per_element_step"] = 1e9 * material / n;
+    state.counters["kernel_cpu_ns_per_element_step"] = 1e9 * (cpu - material) / n;
+  }
   state.counters["plastic_fraction"] = fraction;
   state.counters["return_iterations"] = iterations;
 }

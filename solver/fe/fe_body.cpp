@@ -1,3 +1,9 @@
+// The lane kernels (Lane<8> = 64-byte vectors) are inlined into the
+// target_clones block loops below; GCC notes that passing such vectors by
+// value would change the ABI between the baseline and AVX-512 builds, which
+// matters only across translation units compiled differently, not here.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "solver/fe/fe_body.hpp"
 
 #include <algorithm>
@@ -8,6 +14,7 @@
 #include "solver/fe/bulk_viscosity.hpp"
 #include "solver/fe/hex8.hpp"
 #include "solver/fe/quad4_axisym.hpp"
+#include "solver/fe/simd_lanes.hpp"
 #include "solver/material/damage.hpp"
 
 #ifdef _OPENMP
@@ -15,6 +22,10 @@
 #define SPLAT_OMP(directive) _Pragma(#directive)
 #else
 #define SPLAT_OMP(directive)
+#endif
+
+#ifndef SPLAT_FE_LANE_WIDTH
+#define SPLAT_FE_LANE_WIDTH 8
 #endif
 
 namespace splat {
@@ -79,7 +90,8 @@ FeBody start_body(const std::string& name, ElementKind kind, const Material& mat
 }
 
 // Per-element arrays sized and initialised once the connectivity is known;
-// then the CSR node -> (element * 8 + local node) adjacency, in element order.
+// then the CSR node -> (element * 8 + local node) adjacency, in element order
+// (solver/contact reads it too).
 void finish_body(FeBody& body, NodeSet& nodes, double temperature, unsigned long long seed) {
   const std::size_t ne = body.num_elements();
   const int npe = body.nodes_per_element();
@@ -95,9 +107,7 @@ void finish_body(FeBody& body, NodeSet& nodes, double temperature, unsigned long
   body.hg.assign(ne, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
   body.hg_kappa.assign(ne, 0.0);
   body.active.assign(ne, 1);
-  std::array<Vec3, 8> zero;
-  zero.fill(Vec3::Zero());
-  body.elem_force.assign(ne, zero);
+  body.elem_force.assign(ne * static_cast<std::size_t>(npe), Vec3::Zero());
 
   const std::size_t nn = body.node_end - body.node_begin;
   body.node_elem_offsets.assign(nn + 1, 0);
@@ -136,35 +146,43 @@ int global_node(const std::string& name, std::size_t e, int local, std::size_t n
 }
 
 // hughes_winget_rotation and rotate_symmetric (fe_body.hpp), same arithmetic,
-// in scalars for the element loop: Eigen's comma initialiser and 3x3 products
-// mixed scalar stores with packet loads of the same memory here
-// (store-forwarding stalls). (w21, w02, w10) are W(2,1), W(0,2), W(1,0).
-inline void hughes_winget_rotation_cm(double w21, double w02, double w10, double dt,
-                                      double Q[3][3]) {
+// in scalars or lanes (simd_lanes.hpp) for the element loop: Eigen's comma
+// initialiser and 3x3 products mixed scalar stores with packet loads of the
+// same memory here (store-forwarding stalls). (w21, w02, w10) are W(2,1),
+// W(0,2), W(1,0).
+template <class T>
+SPLAT_LANE_INLINE void hughes_winget_rotation_cm(T w21, T w02, T w10, double dt, T Q[3][3]) {
   const double h = 0.5 * dt;
-  const double a0 = h * w21, a1 = h * w02, a2 = h * w10;
-  const double a_sq = a0 * a0 + a1 * a1 + a2 * a2;
-  const double c = 2.0 / (1.0 + a_sq);
-  const double d = 1.0 - c * a_sq;
+  const T a0 = h * w21, a1 = h * w02, a2 = h * w10;
+  const T a_sq = a0 * a0 + a1 * a1 + a2 * a2;
+  const T c = 2.0 / (1.0 + a_sq);
+  const T d = 1.0 - c * a_sq;
   Q[0][0] = d + c * a0 * a0, Q[0][1] = c * (a0 * a1 - a2), Q[0][2] = c * (a0 * a2 + a1);
   Q[1][0] = c * (a0 * a1 + a2), Q[1][1] = d + c * a1 * a1, Q[1][2] = c * (a1 * a2 - a0);
   Q[2][0] = c * (a0 * a2 - a1), Q[2][1] = c * (a1 * a2 + a0), Q[2][2] = d + c * a2 * a2;
 }
 
-// s <- Q s Q^T for a symmetric s (the six distinct entries, exactly symmetric).
-inline void rotate_symmetric_cm(const double Q[3][3], Mat3& s) {
-  double S[3][3], T[3][3];
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) S[i][j] = s(i, j);
+// S <- Q S Q^T for a symmetric S (the six distinct entries, exactly symmetric).
+template <class T>
+SPLAT_LANE_INLINE void rotate_symmetric_cm(const T Q[3][3], T S[3][3]) {
+  T M[3][3];
   for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) T[i][k] = Q[i][0] * S[0][k] + Q[i][1] * S[1][k] + Q[i][2] * S[2][k];
+    for (int k = 0; k < 3; ++k) M[i][k] = Q[i][0] * S[0][k] + Q[i][1] * S[1][k] + Q[i][2] * S[2][k];
   for (int i = 0; i < 3; ++i) {
     for (int j = i; j < 3; ++j) {
-      const double r = T[i][0] * Q[j][0] + T[i][1] * Q[j][1] + T[i][2] * Q[j][2];
-      s(i, j) = r;
-      s(j, i) = r;
+      const T r = M[i][0] * Q[j][0] + M[i][1] * Q[j][1] + M[i][2] * Q[j][2];
+      S[i][j] = r;
+      S[j][i] = r;
     }
   }
+}
+inline void rotate_symmetric_cm(const double Q[3][3], Mat3& s) {
+  double S[3][3];
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) S[i][j] = s(i, j);
+  rotate_symmetric_cm(Q, S);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) s(i, j) = S[i][j];
 }
 
 // Result of the material part of one element step.
@@ -232,25 +250,37 @@ inline bool to_be_eroded(const FeBody& body, std::size_t e, double V, double dt_
   return s.erosion_min_time_step > 0.0 && dt_e < s.erosion_min_time_step;
 }
 
+// Element e's nodal forces, nodes_per_element() of them.
+inline Vec3* element_forces(FeBody& body, std::size_t e) {
+  return &body.elem_force[e * static_cast<std::size_t>(body.nodes_per_element())];
+}
+inline void zero_forces(FeBody& body, std::size_t e) {
+  std::fill_n(element_forces(body, e), body.nodes_per_element(), Vec3::Zero());
+}
+
 // Books an element's step whose forces the caller has written to
 // elem_force[e]: an element flagged for erosion exerts no force (they are
 // zeroed) and sets no time-step bound (it is removed before the next step).
-inline void finish_element(FeBody& body, std::size_t e, double V, const MaterialStep& ms,
+inline void finish_element(FeBody& body, std::size_t e, double V, double dt_e, double q_power,
                            double hourglass_power, BlockSums& sums, std::vector<int>& erode) {
-  if (to_be_eroded(body, e, V, ms.dt_e, sums)) {
-    body.elem_force[e].fill(Vec3::Zero());
+  if (to_be_eroded(body, e, V, dt_e, sums)) {
+    zero_forces(body, e);
     erode.push_back(static_cast<int>(e));
     return;
   }
-  sums.dt_min = std::min(sums.dt_min, ms.dt_e);
+  sums.dt_min = std::min(sums.dt_min, dt_e);
   sums.hourglass_power += hourglass_power;
-  sums.viscosity_power += ms.q_power;
+  sums.viscosity_power += q_power;
+}
+inline void finish_element(FeBody& body, std::size_t e, double V, const MaterialStep& ms,
+                           double hourglass_power, BlockSums& sums, std::vector<int>& erode) {
+  finish_element(body, e, V, ms.dt_e, ms.q_power, hourglass_power, sums, erode);
 }
 
 // An element with non-positive volume: no force, no material update.
 inline void inverted_element(FeBody& body, std::size_t e, BlockSums& sums,
                              std::vector<int>& erode) {
-  body.elem_force[e].fill(Vec3::Zero());
+  zero_forces(body, e);
   if (to_be_eroded(body, e, 0.0, infinity, sums)) erode.push_back(static_cast<int>(e));
 }
 
@@ -300,101 +330,9 @@ void hex_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, B
     hg_power = hex8_hourglass_viscous(qdot, a_h, Q);
   }
   const Hex8Field f = hex8_forces_cm(ms.sigma, g, xm, Q);
-  std::array<Vec3, 8>& out = body.elem_force[e];
+  Vec3* out = element_forces(body, e);
   for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], f.u[2][a]);
   finish_element(body, e, V, ms, hg_power, sums, erode);
-}
-
-// Two neighbouring elements at once, lane l = element e + l: the geometry,
-// gradient and force kernels run on Pair (hex8.hpp), two elements per SSE2
-// instruction, lane by lane the arithmetic of hex_element, so the results are
-// the same to the bit; the material update and hourglass forces run element by
-// element, and the sums are booked in element order. Falls back to
-// hex_element for each element when either is inverted.
-void hex_element_pair(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, BlockSums& sums,
-                      std::vector<int>& erode) {
-  const std::array<int, 8>& c0 = body.conn[e];
-  const std::array<int, 8>& c1 = body.conn[e + 1];
-  Hex8FieldT<Pair> x, v;
-  for (int a = 0; a < 8; ++a) {
-    const Vec3& x0 = nodes.x[c0[a]];
-    const Vec3& x1 = nodes.x[c1[a]];
-    const Vec3& v0 = nodes.v[c0[a]];
-    const Vec3& v1 = nodes.v[c1[a]];
-    for (int i = 0; i < 3; ++i) {
-      x.u[i][a] = make_pair(x0[i], x1[i]);
-      v.u[i][a] = make_pair(v0[i], v1[i]);
-    }
-  }
-  const Hex8FieldT<Pair> xm = hex8_modes_cm(x);
-  const Hex8GeometryCmT<Pair> g = hex8_geometry_cm(xm);
-  const double V[2] = {g.volume[0], g.volume[1]};
-  if (!(V[0] > 0.0) || !(V[1] > 0.0)) {
-    hex_element(body, nodes, e, dt, sums, erode);
-    hex_element(body, nodes, e + 1, dt, sums, erode);
-    return;
-  }
-  const Pair max_area2 = hex8_max_face_area2_cm(x);
-  const Pair lc = 2.0 * g.volume / lane_sqrt(max_area2);
-  double L_c[2];
-  for (int l = 0; l < 2; ++l) {
-    L_c[l] = max_area2[l] > 0.0 ? lc[l] : 0.0;
-    body.volume[e + l] = V[l];
-    body.char_length[e + l] = L_c[l];
-  }
-  const Hex8FieldT<Pair> w = hex8_modes_cm(v);
-
-  Pair L[3][3];
-  if (dt > 0.0) {
-    Hex8FieldT<Pair> mid;  // x_{n+1/2} = x - dt/2 v, mode by mode
-    for (int i = 0; i < 3; ++i)
-      for (int u = 0; u < 8; ++u) mid.u[i][u] = xm.u[i][u] - (0.5 * dt) * w.u[i][u];
-    hex8_velocity_gradient_cm(w, hex8_geometry_cm(mid), L);
-  } else {
-    for (auto& row : L)
-      for (Pair& c : row) c = Pair{};
-  }
-  MaterialStep ms[2];
-  for (int l = 0; l < 2; ++l) {
-    Mat3 Ll;
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) Ll(i, j) = L[i][j][l];
-    ms[l] = material_step(body, e + l, Ll, dt, V[l], L_c[l], sums);
-  }
-
-  Pair L_end[3][3], qdot[4][3];
-  hex8_velocity_gradient_cm(w, g, L_end);
-  hex8_hourglass_rates_cm(w, xm, L_end, qdot);
-  const double c_hg = body.settings.hourglass_coefficient;
-  double hg_power[2];
-  std::array<Vec3, 4> Q[2];
-  for (int l = 0; l < 2; ++l) {
-    const std::size_t el = e + static_cast<std::size_t>(l);
-    std::array<Vec3, 4> q;
-    for (int k = 0; k < 4; ++k) q[k] = Vec3(qdot[k][0][l], qdot[k][1][l], qdot[k][2][l]);
-    if (body.settings.stiffness_hourglass) {
-      const double G_d = (1.0 - body.state[el].D) * body.constants.G;
-      const double kappa = hex8_stiffness_hourglass_coefficient(c_hg, G_d, V[l]);
-      soften_held_hourglass(body.hg_kappa[el], kappa, body.hg[el].data(), 4);
-      hg_power[l] = hex8_hourglass_stiffness(q, kappa, dt, ms[l].R, body.hg[el]);
-      Q[l] = body.hg[el];
-    } else {
-      const double rho = body.element_mass[el] / V[l];
-      const double a_h = hex8_viscous_hourglass_coefficient(c_hg, rho, ms[l].c, V[l]);
-      hg_power[l] = hex8_hourglass_viscous(q, a_h, Q[l]);
-    }
-  }
-  Pair sigma[3][3], Qp[4][3];
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) sigma[i][j] = make_pair(ms[0].sigma(i, j), ms[1].sigma(i, j));
-    for (int k = 0; k < 4; ++k) Qp[k][i] = make_pair(Q[0][k][i], Q[1][k][i]);
-  }
-  const Hex8FieldT<Pair> f = hex8_forces_cm(sigma, g, xm, Qp);
-  for (int l = 0; l < 2; ++l) {
-    std::array<Vec3, 8>& out = body.elem_force[e + l];
-    for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], f.u[2][a][l]);
-    finish_element(body, e + l, V[l], ms[l], hg_power[l], sums, erode);
-  }
 }
 
 void quad_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, BlockSums& sums,
@@ -443,78 +381,451 @@ void quad_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, 
     const double a_h = quad4_axisym_viscous_hourglass_coefficient(c_hg, rho, ms.c, g.rbar, g.area);
     hg_power = quad4_axisym_hourglass_viscous_cm(gamma, v, a_h, f);
   }
-  std::array<Vec3, 8>& out = body.elem_force[e];
+  Vec3* out = element_forces(body, e);
   for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], 0.0);
   finish_element(body, e, V, ms, hg_power, sums, erode);
 }
 
-// Two neighbouring quads at once in the lanes of Pair, as hex_element_pair:
-// lane by lane the arithmetic of quad_element (viscous hourglass control
-// only), so the same results to the bit. Falls back to quad_element for each
-// element when either is inverted.
-void quad_element_pair(FeBody& body, const NodeSet& nodes, std::size_t e, double dt,
-                       BlockSums& sums, std::vector<int>& erode) {
-  const std::array<int, 8>& c0 = body.conn[e];
-  const std::array<int, 8>& c1 = body.conn[e + 1];
-  Quad4FieldT<Pair> x, v;
-  for (int a = 0; a < 4; ++a) {
-    const Vec3& x0 = nodes.x[c0[a]];
-    const Vec3& x1 = nodes.x[c1[a]];
-    const Vec3& v0 = nodes.v[c0[a]];
-    const Vec3& v1 = nodes.v[c1[a]];
-    for (int i = 0; i < 2; ++i) {
-      x.u[i][a] = make_pair(x0[i], x1[i]);
-      v.u[i][a] = make_pair(v0[i], v1[i]);
-    }
+// Stand-in for the batched material update (solver/material/point_update_batch,
+// being written): the same results as update_point for each k on
+// states[index[k]], the signature of the real one.
+[[maybe_unused]] void update_points_standin(const Material& m, const MaterialConstants& mc,
+                                            const ModelSwitches& sw, PointState* states,
+                                            const int* index, std::size_t n, const Mat3* d_eps,
+                                            const double* J_new, double dt, const double* length,
+                                            PointUpdateResult* out) {
+  for (std::size_t k = 0; k < n; ++k) {
+    out[k] = update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k]);
   }
-  const Quad4GradientCmT<Pair> g = quad4_axisym_gradient_cm(x);
-  const double V[2] = {g.volume[0], g.volume[1]};
-  if (!(g.area[0] > 0.0) || !(V[0] > 0.0) || !(g.area[1] > 0.0) || !(V[1] > 0.0)) {
-    quad_element(body, nodes, e, dt, sums, erode);
-    quad_element(body, nodes, e + 1, dt, sums, erode);
+}
+
+// Elements per lane group (4 or 8 doubles per vector, simd_lanes.hpp).
+constexpr int lane_width = SPLAT_FE_LANE_WIDTH;
+static_assert(block_size % lane_width == 0);
+
+// Lane l of the result is f(l).
+template <int W, class F>
+SPLAT_LANE_INLINE Lane<W> lanes_of(F&& f) {
+  if constexpr (W == 4) {
+    return Lane<4>{f(0), f(1), f(2), f(3)};
+  } else {
+    static_assert(W == 8);
+    return Lane<8>{f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)};
+  }
+}
+
+// Block-local data of the phased element loop, one entry per position p of
+// the block's active elements (element order), lanes grouped W at a time.
+template <int W, int NodesPerElement>
+struct BlockScratch {
+  static constexpr int groups = static_cast<int>(block_size) / W;
+  int count = 0;                // active elements of the block
+  int element[block_size];      // element id at position p
+  bool valid[block_size];       // not inverted: runs the material update and forces
+  Lane<W> L_c[groups];          // characteristic length, m
+  Lane<W> tr_D[groups];         // tr(D) at mid-step, 1/s (0 for dt = 0)
+  Lane<W> R[groups][3][3];      // incremental rotation (I for dt = 0)
+  double dt_e[block_size];      // CFL bound, s
+  double q_power[block_size];   // bulk-viscosity power, W
+  double hg_power[block_size];  // hourglass power, W
+  // Inputs and results of the block's one material call.
+  int mat_count = 0;
+  int mat_index[block_size];
+  Mat3 d_eps[block_size];
+  double J_new[block_size];
+  double length[block_size];
+  PointUpdateResult mat_out[block_size];
+
+  // Element of lane l of group g (the last one repeated past the end).
+  int lane_element(int g, int l) const { return element[std::min(g * W + l, count - 1)]; }
+  bool real(int g, int l) const { return g * W + l < count && valid[g * W + l]; }
+};
+
+// Active elements of [begin, end) in order.
+template <class Scratch>
+SPLAT_LANE_INLINE void list_active(const FeBody& body, std::size_t begin, std::size_t end,
+                                   Scratch& s) {
+  s.count = 0;
+  s.mat_count = 0;
+  for (std::size_t e = begin; e < end; ++e)
+    if (body.active[e]) s.element[s.count++] = static_cast<int>(e);
+}
+
+// Phase (a), after the geometry: with L at mid-step (dt > 0), the
+// Hughes-Winget rotation of st.s, R, tr(D) and the material inputs
+// d_eps = sym(L) dt, J = V / V0, L_c of the group's valid lanes; for dt = 0
+// R = I and tr(D) = 0 (no material update).
+template <int W, class Scratch>
+SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][3],
+                                        const Lane<W>& volume, double dt, Scratch& s) {
+  using V = Lane<W>;
+  if (!(dt > 0.0)) {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) s.R[g][i][j] = V{} + (i == j ? 1.0 : 0.0);
+    s.tr_D[g] = V{};
     return;
   }
-  const Pair lc = quad4_axisym_characteristic_length_cm(x, g.area);
-  const double L_c[2] = {lc[0], lc[1]};
-  for (int l = 0; l < 2; ++l) {
-    body.volume[e + l] = V[l];
-    body.char_length[e + l] = L_c[l];
+  V Q[3][3];
+  hughes_winget_rotation_cm<V>(0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
+                               0.5 * (L[1][0] - L[0][1]), dt, Q);
+  V S[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      S[i][j] = lanes_of<W>([&](int l) { return body.state[s.lane_element(g, l)].s(i, j); });
+  rotate_symmetric_cm<V>(Q, S);
+  V D[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      s.R[g][i][j] = Q[i][j];
+      D[i][j] = 0.5 * (L[i][j] + L[j][i]);
+    }
+  s.tr_D[g] = D[0][0] + (D[1][1] + D[2][2]);  // Eigen's trace(): d0 + (d1 + d2)
+  for (int l = 0; l < W; ++l) {
+    if (!s.real(g, l)) continue;
+    const int e = s.element[g * W + l];
+    Mat3& st_s = body.state[static_cast<std::size_t>(e)].s;
+    Mat3& de = s.d_eps[s.mat_count];
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) {
+        st_s(i, j) = S[i][j][l];
+        de(i, j) = dt * D[i][j][l];
+      }
+    s.mat_index[s.mat_count] = e;
+    s.J_new[s.mat_count] = volume[l] / body.volume0[static_cast<std::size_t>(e)];
+    s.length[s.mat_count] = s.L_c[g][l];
+    ++s.mat_count;
+  }
+}
+
+// Phase (b): the material update of the block's valid elements in one call.
+template <class Scratch>
+SPLAT_LANE_INLINE void material_block(FeBody& body, double dt, Scratch& s, BlockSums& sums) {
+  if (!(dt > 0.0) || s.mat_count == 0) return;
+  update_points_standin(body.material, body.constants, body.switches, body.state.data(),
+                        s.mat_index, static_cast<std::size_t>(s.mat_count), s.d_eps, s.J_new, dt,
+                        s.length, s.mat_out);
+  for (int k = 0; k < s.mat_count; ++k) {
+    sums.max_iterations = std::max(sums.max_iterations, s.mat_out[k].iterations);
+    sums.failed = sums.failed || !s.mat_out[k].converged;
+  }
+}
+
+// Phase (c), stress part: bulk viscosity q (bulk_viscosity.hpp), sigma - q I,
+// the CFL bound and the viscosity power of group g, as material_step.
+template <int W, class Scratch>
+SPLAT_LANE_INLINE void stress_lanes(FeBody& body, int g, const Lane<W>& volume, Scratch& s,
+                                    Lane<W> sigma[3][3], Lane<W>& rho) {
+  using V = Lane<W>;
+  const double c = body.constants.wave_speed;
+  const double Q1 = body.settings.q_linear, Q2 = body.settings.q_quadratic;
+  const V mass =
+      lanes_of<W>([&](int l) { return body.element_mass[std::size_t(s.lane_element(g, l))]; });
+  rho = mass / volume;
+  const V L_c = s.L_c[g], tr_D = s.tr_D[g];
+  const V q_raw = rho * L_c * (Q2 * L_c * tr_D * tr_D - (Q1 * c) * tr_D);
+  const V q = tr_D >= V{} ? V{} : q_raw;
+  const V Qv = tr_D >= V{} ? V{} : (Q1 * c) - Q2 * L_c * tr_D;
+  const V dt_e = L_c / (Qv + lane_sqrt(Qv * Qv + c * c));
+  const V q_power = -q * volume * tr_D;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const V s_ij =
+          lanes_of<W>([&](int l) { return body.state[std::size_t(s.lane_element(g, l))].s(i, j); });
+      sigma[i][j] = s_ij - lanes_of<W>([&](int l) {
+                      return body.state[std::size_t(s.lane_element(g, l))].p * (i == j ? 1.0 : 0.0);
+                    });
+    }
+  for (int i = 0; i < 3; ++i) sigma[i][i] -= q;
+  for (int l = 0; l < W; ++l) {
+    if (!s.real(g, l)) continue;
+    const int p = g * W + l;
+    body.q[std::size_t(s.element[p])] = q[l];
+    s.dt_e[p] = dt_e[l];
+    s.q_power[p] = q_power[l];
+  }
+}
+
+// Phase (d): bookkeeping in element order (sums, erosion flags).
+template <class Scratch>
+SPLAT_LANE_INLINE void finish_block(FeBody& body, const Scratch& s, BlockSums& sums,
+                                    std::vector<int>& erode) {
+  for (int p = 0; p < s.count; ++p) {
+    if (!s.valid[p]) continue;
+    const std::size_t e = std::size_t(s.element[p]);
+    finish_element(body, e, body.volume[e], s.dt_e[p], s.q_power[p], s.hg_power[p], sums, erode);
+  }
+}
+
+// One block of hexahedra in phases: (a) geometry, L and rotation in lanes of
+// W elements, (b) one material call for the block, (c) bulk viscosity, CFL
+// bound, hourglass (either form) and forces in lanes, (d) bookkeeping in
+// element order. Lane by lane the arithmetic of hex_element, so the same
+// results to the bit; an inverted element takes inverted_element's path.
+template <int W>
+SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::size_t begin,
+                                       std::size_t end, double dt, BlockSums& sums,
+                                       std::vector<int>& erode) {
+  using V = Lane<W>;
+  using Scratch = BlockScratch<W, 8>;
+  constexpr int G = Scratch::groups;
+  Scratch s;
+  list_active(body, begin, end, s);
+  if (s.count == 0) return;
+  const int groups = (s.count + W - 1) / W;
+  Hex8FieldT<V> xm[G], w[G];
+  Hex8GeometryCmT<V> geo[G];
+
+  // (a) kinematics.
+  for (int g = 0; g < groups; ++g) {
+    const std::array<int, 8>* cn[W];
+    for (int l = 0; l < W; ++l) cn[l] = &body.conn[std::size_t(s.lane_element(g, l))];
+    Hex8FieldT<V> x, v;
+    for (int a = 0; a < 8; ++a)
+      for (int i = 0; i < 3; ++i) {
+        x.u[i][a] = lanes_of<W>([&](int l) { return nodes.x[std::size_t((*cn[l])[a])][i]; });
+        v.u[i][a] = lanes_of<W>([&](int l) { return nodes.v[std::size_t((*cn[l])[a])][i]; });
+      }
+    xm[g] = hex8_modes_cm(x);
+    geo[g] = hex8_geometry_cm(xm[g]);
+    const V volume = geo[g].volume;
+    const V max_area2 = hex8_max_face_area2_cm(x);
+    s.L_c[g] = max_area2 > V{} ? 2.0 * volume / lane_sqrt(max_area2) : V{};
+    w[g] = hex8_modes_cm(v);
+    for (int l = 0; l < W && g * W + l < s.count; ++l) {
+      const int p = g * W + l;
+      const std::size_t e = std::size_t(s.element[p]);
+      body.volume[e] = volume[l];
+      s.valid[p] = volume[l] > 0.0;
+      if (s.valid[p]) {
+        body.char_length[e] = s.L_c[g][l];
+      } else {
+        inverted_element(body, e, sums, erode);
+      }
+    }
+    V L[3][3];
+    if (dt > 0.0) {
+      Hex8FieldT<V> mid;  // x_{n+1/2} = x - dt/2 v, mode by mode
+      for (int i = 0; i < 3; ++i)
+        for (int u = 0; u < 8; ++u) mid.u[i][u] = xm[g].u[i][u] - (0.5 * dt) * w[g].u[i][u];
+      hex8_velocity_gradient_cm(w[g], hex8_geometry_cm(mid), L);
+    } else {
+      for (auto& row : L)
+        for (V& c : row) c = V{};
+    }
+    kinematics_lanes<W>(body, g, L, volume, dt, s);
   }
 
-  Pair L2[2][2], L_thth;
-  if (dt > 0.0) {
-    Quad4FieldT<Pair> xm;
-    for (int i = 0; i < 2; ++i)
-      for (int a = 0; a < 4; ++a) xm.u[i][a] = x.u[i][a] - (0.5 * dt) * v.u[i][a];
-    quad4_axisym_velocity_gradient_cm(v, quad4_axisym_gradient_cm(xm), L2, L_thth);
-  } else {
-    L2[0][0] = L2[0][1] = L2[1][0] = L2[1][1] = L_thth = Pair{};
-  }
-  MaterialStep ms[2];
-  for (int l = 0; l < 2; ++l) {
-    Mat3 L;
-    L << L2[0][0][l], L2[0][1][l], 0.0,  //
-        L2[1][0][l], L2[1][1][l], 0.0,   //
-        0.0, 0.0, L_thth[l];
-    ms[l] = material_step(body, e + l, L, dt, V[l], L_c[l], sums);
-  }
+  // (b) material.
+  material_block(body, dt, s, sums);
 
-  Quad4FieldT<Pair> f;
-  auto sigma = [&ms](int i, int j) { return make_pair(ms[0].sigma(i, j), ms[1].sigma(i, j)); };
-  quad4_axisym_stress_forces_cm(sigma(0, 0), sigma(0, 1), sigma(1, 0), sigma(1, 1), sigma(2, 2), g,
-                                f);
-  const std::array<Pair, 4> gamma = quad4_axisym_hourglass_vector_cm(x, g);
+  // (c) bulk viscosity, time step, hourglass, forces.
   const double c_hg = body.settings.hourglass_coefficient;
-  double a_h[2];
-  for (int l = 0; l < 2; ++l) {
-    const double rho = body.element_mass[e + l] / V[l];
-    a_h[l] = quad4_axisym_viscous_hourglass_coefficient(c_hg, rho, ms[l].c, g.rbar[l], g.area[l]);
+  const bool stiffness = body.settings.stiffness_hourglass;
+  for (int g = 0; g < groups; ++g) {
+    const V volume = geo[g].volume;
+    V sigma[3][3], rho;
+    stress_lanes<W>(body, g, volume, s, sigma, rho);
+    V L_end[3][3], qdot[4][3], Q[4][3];
+    hex8_velocity_gradient_cm(w[g], geo[g], L_end);
+    hex8_hourglass_rates_cm(w[g], xm[g], L_end, qdot);
+    V coefficient;  // kappa (stiffness) or a_h (viscous)
+    for (int l = 0; l < W; ++l) {
+      const std::size_t e = std::size_t(s.lane_element(g, l));
+      if (!s.real(g, l)) {
+        coefficient[l] = 0.0;
+      } else if (stiffness) {
+        const double G_d = (1.0 - body.state[e].D) * body.constants.G;
+        coefficient[l] = hex8_stiffness_hourglass_coefficient(c_hg, G_d, volume[l]);
+        soften_held_hourglass(body.hg_kappa[e], coefficient[l], body.hg[e].data(), 4);
+      } else {
+        coefficient[l] = hex8_viscous_hourglass_coefficient(c_hg, body.element_mass[e] / volume[l],
+                                                            body.constants.wave_speed, volume[l]);
+      }
+    }
+    V power = V{};
+    if (stiffness) {
+      const V(&R)[3][3] = s.R[g];
+      for (int k = 0; k < 4; ++k) {
+        V Qk[3];
+        for (int i = 0; i < 3; ++i)
+          Qk[i] =
+              lanes_of<W>([&](int l) { return body.hg[std::size_t(s.lane_element(g, l))][k][i]; });
+        // R Q^k in the order Eigen's 3x3 product sums it (hex8_hourglass_stiffness):
+        // rows 0 and 1 in one SSE2 packet, left to right; row 2 as an unrolled
+        // reduction, r_0 + (r_1 + r_2).
+        for (int i = 0; i < 2; ++i)
+          Q[k][i] = ((R[i][0] * Qk[0] + R[i][1] * Qk[1]) + R[i][2] * Qk[2]) +
+                    (coefficient * dt) * qdot[k][i];
+        Q[k][2] = (R[2][0] * Qk[0] + (R[2][1] * Qk[1] + R[2][2] * Qk[2])) +
+                  (coefficient * dt) * qdot[k][2];
+        power += (Q[k][0] * qdot[k][0] + Q[k][1] * qdot[k][1]) + Q[k][2] * qdot[k][2];
+      }
+      for (int l = 0; l < W; ++l) {
+        if (!s.real(g, l)) continue;
+        std::array<Vec3, 4>& held = body.hg[std::size_t(s.element[g * W + l])];
+        for (int k = 0; k < 4; ++k) held[k] = Vec3(Q[k][0][l], Q[k][1][l], Q[k][2][l]);
+      }
+    } else {
+      for (int k = 0; k < 4; ++k) {
+        for (int i = 0; i < 3; ++i) Q[k][i] = coefficient * qdot[k][i];
+        power += (Q[k][0] * qdot[k][0] + Q[k][1] * qdot[k][1]) + Q[k][2] * qdot[k][2];
+      }
+    }
+    const Hex8FieldT<V> f = hex8_forces_cm(sigma, geo[g], xm[g], Q);
+    for (int l = 0; l < W; ++l) {
+      if (!s.real(g, l)) continue;
+      const int p = g * W + l;
+      s.hg_power[p] = power[l];
+      Vec3* out = element_forces(body, std::size_t(s.element[p]));
+      for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], f.u[2][a][l]);
+    }
   }
-  const Pair hg_power = quad4_axisym_hourglass_viscous_cm(gamma, v, make_pair(a_h[0], a_h[1]), f);
-  for (int l = 0; l < 2; ++l) {
-    std::array<Vec3, 8>& out = body.elem_force[e + l];
-    for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], 0.0);
-    finish_element(body, e + l, V[l], ms[l], hg_power[l], sums, erode);
+
+  // (d) bookkeeping.
+  finish_block(body, s, sums, erode);
+}
+
+// One block of axisymmetric quads in phases, as hex_block_lanes; lane by lane
+// the arithmetic of quad_element.
+template <int W>
+SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std::size_t begin,
+                                        std::size_t end, double dt, BlockSums& sums,
+                                        std::vector<int>& erode) {
+  using V = Lane<W>;
+  using Scratch = BlockScratch<W, 4>;
+  constexpr int G = Scratch::groups;
+  Scratch s;
+  list_active(body, begin, end, s);
+  if (s.count == 0) return;
+  const int groups = (s.count + W - 1) / W;
+  Quad4FieldT<V> xs[G], vs[G];
+  Quad4GradientCmT<V> grad[G];
+
+  // (a) kinematics.
+  for (int g = 0; g < groups; ++g) {
+    const std::array<int, 8>* cn[W];
+    for (int l = 0; l < W; ++l) cn[l] = &body.conn[std::size_t(s.lane_element(g, l))];
+    Quad4FieldT<V>& x = xs[g];
+    Quad4FieldT<V>& v = vs[g];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 2; ++i) {
+        x.u[i][a] = lanes_of<W>([&](int l) { return nodes.x[std::size_t((*cn[l])[a])][i]; });
+        v.u[i][a] = lanes_of<W>([&](int l) { return nodes.v[std::size_t((*cn[l])[a])][i]; });
+      }
+    grad[g] = quad4_axisym_gradient_cm(x);
+    const V volume = grad[g].volume;
+    s.L_c[g] = quad4_axisym_characteristic_length_cm(x, grad[g].area);
+    for (int l = 0; l < W && g * W + l < s.count; ++l) {
+      const int p = g * W + l;
+      const std::size_t e = std::size_t(s.element[p]);
+      body.volume[e] = volume[l];
+      s.valid[p] = grad[g].area[l] > 0.0 && volume[l] > 0.0;
+      if (s.valid[p]) {
+        body.char_length[e] = s.L_c[g][l];
+      } else {
+        inverted_element(body, e, sums, erode);
+      }
+    }
+    V L[3][3];
+    if (dt > 0.0) {
+      Quad4FieldT<V> xm;
+      for (int i = 0; i < 2; ++i)
+        for (int a = 0; a < 4; ++a) xm.u[i][a] = x.u[i][a] - (0.5 * dt) * v.u[i][a];
+      V L2[2][2], L_thth;
+      quad4_axisym_velocity_gradient_cm(v, quad4_axisym_gradient_cm(xm), L2, L_thth);
+      L[0][0] = L2[0][0], L[0][1] = L2[0][1], L[0][2] = V{};
+      L[1][0] = L2[1][0], L[1][1] = L2[1][1], L[1][2] = V{};
+      L[2][0] = V{}, L[2][1] = V{}, L[2][2] = L_thth;
+    } else {
+      for (auto& row : L)
+        for (V& c : row) c = V{};
+    }
+    kinematics_lanes<W>(body, g, L, volume, dt, s);
+  }
+
+  // (b) material.
+  material_block(body, dt, s, sums);
+
+  // (c) bulk viscosity, time step, hourglass, forces.
+  const double c_hg = body.settings.hourglass_coefficient;
+  const bool stiffness = body.settings.stiffness_hourglass;
+  for (int g = 0; g < groups; ++g) {
+    const Quad4GradientCmT<V>& gr = grad[g];
+    V sigma[3][3], rho;
+    stress_lanes<W>(body, g, gr.volume, s, sigma, rho);
+    Quad4FieldT<V> f;
+    quad4_axisym_stress_forces_cm(sigma[0][0], sigma[0][1], sigma[1][0], sigma[1][1], sigma[2][2],
+                                  gr, f);
+    const std::array<V, 4> gamma = quad4_axisym_hourglass_vector_cm(xs[g], gr);
+    V coefficient;  // kappa (stiffness) or a_h (viscous)
+    for (int l = 0; l < W; ++l) {
+      const std::size_t e = std::size_t(s.lane_element(g, l));
+      if (!s.real(g, l)) {
+        coefficient[l] = 0.0;
+      } else if (stiffness) {
+        const double G_d = (1.0 - body.state[e].D) * body.constants.G;
+        coefficient[l] = quad4_axisym_stiffness_hourglass_coefficient(c_hg, G_d, gr.rbar[l]);
+        soften_held_hourglass(body.hg_kappa[e], coefficient[l], body.hg[e].data(), 1);
+      } else {
+        coefficient[l] = quad4_axisym_viscous_hourglass_coefficient(
+            c_hg, body.element_mass[e] / gr.volume[l], body.constants.wave_speed, gr.rbar[l],
+            gr.area[l]);
+      }
+    }
+    V power;
+    if (stiffness) {
+      const V(&R)[3][3] = s.R[g];
+      V Q[2];
+      for (int i = 0; i < 2; ++i)
+        Q[i] = lanes_of<W>([&](int l) { return body.hg[std::size_t(s.lane_element(g, l))][0][i]; });
+      power = quad4_axisym_hourglass_stiffness_cm(gamma, vs[g], coefficient, dt, R[0][0], R[0][1],
+                                                  R[1][0], R[1][1], Q, f);
+      for (int l = 0; l < W; ++l) {
+        if (!s.real(g, l)) continue;
+        body.hg[std::size_t(s.element[g * W + l])][0] = Vec3(Q[0][l], Q[1][l], 0.0);
+      }
+    } else {
+      power = quad4_axisym_hourglass_viscous_cm(gamma, vs[g], coefficient, f);
+    }
+    for (int l = 0; l < W; ++l) {
+      if (!s.real(g, l)) continue;
+      const int p = g * W + l;
+      s.hg_power[p] = power[l];
+      Vec3* out = element_forces(body, std::size_t(s.element[p]));
+      for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], 0.0);
+    }
+  }
+
+  // (d) bookkeeping.
+  finish_block(body, s, sums, erode);
+}
+
+// The block loops, compiled for AVX-512, AVX2 and the x86-64 baseline and
+// chosen at run time (never -march=native); the same results on each, as
+// the build has -ffp-contract=off.
+__attribute__((target_clones("avx512f", "avx2", "default"))) void hex_block(
+    FeBody& body, const NodeSet& nodes, std::size_t begin, std::size_t end, double dt,
+    BlockSums& sums, std::vector<int>& erode) {
+  hex_block_lanes<lane_width>(body, nodes, begin, end, dt, sums, erode);
+}
+
+__attribute__((target_clones("avx512f", "avx2", "default"))) void quad_block(
+    FeBody& body, const NodeSet& nodes, std::size_t begin, std::size_t end, double dt,
+    BlockSums& sums, std::vector<int>& erode) {
+  quad_block_lanes<lane_width>(body, nodes, begin, end, dt, sums, erode);
+}
+
+// One element at a time through hex_element / quad_element (the slow
+// obvious path, fe_internal_forces_one_by_one).
+void one_by_one_block(FeBody& body, const NodeSet& nodes, std::size_t begin, std::size_t end,
+                      double dt, BlockSums& sums, std::vector<int>& erode) {
+  for (std::size_t e = begin; e < end; ++e) {
+    if (!body.active[e]) continue;
+    if (body.kind == ElementKind::hex8) {
+      hex_element(body, nodes, e, dt, sums, erode);
+    } else {
+      quad_element(body, nodes, e, dt, sums, erode);
+    }
   }
 }
 
@@ -587,7 +898,11 @@ FeBody make_fe_body(const std::string& name, const AxisymMesh& mesh, const Mater
   return body;
 }
 
-FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
+namespace {
+
+// The element loop over blocks, either phased in lanes (hex_block,
+// quad_block) or one element at a time, then the node gather.
+FeStepResult internal_forces(FeBody& body, NodeSet& nodes, double dt, bool lanes) {
   FeStepResult result;
   result.dt_stable = infinity;
   const std::size_t ne = body.num_elements();
@@ -595,11 +910,11 @@ FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
   std::vector<BlockSums> blocks(num_blocks);
   std::vector<std::vector<int>> erode(static_cast<std::size_t>(max_threads()));
   const bool hex = body.kind == ElementKind::hex8;
-  const bool pair_quads = !body.settings.stiffness_hourglass;  // quad pairs: viscous form only
   const long long nb = static_cast<long long>(num_blocks);
 
   const long long first = static_cast<long long>(body.node_begin);
   const long long last = static_cast<long long>(body.node_end);
+  const int shift = hex ? 3 : 2;  // e * npe = e << shift
 
   // One parallel region (one fork and join per step) for the element loop
   // and the node gather, which waits for it at the implicit barrier.
@@ -609,22 +924,13 @@ FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
       const std::size_t k = static_cast<std::size_t>(bk);
       BlockSums& sums = blocks[k];
       std::vector<int>& my_erode = erode[static_cast<std::size_t>(thread_id())];
-      const std::size_t end = std::min(ne, (k + 1) * block_size);
-      for (std::size_t e = k * block_size; e < end; ++e) {
-        if (!body.active[e]) continue;
-        if (hex) {
-          if (e + 1 < end && body.active[e + 1]) {
-            hex_element_pair(body, nodes, e, dt, sums, my_erode);
-            ++e;
-          } else {
-            hex_element(body, nodes, e, dt, sums, my_erode);
-          }
-        } else if (pair_quads && e + 1 < end && body.active[e + 1]) {
-          quad_element_pair(body, nodes, e, dt, sums, my_erode);
-          ++e;
-        } else {
-          quad_element(body, nodes, e, dt, sums, my_erode);
-        }
+      const std::size_t begin = k * block_size, end = std::min(ne, (k + 1) * block_size);
+      if (!lanes) {
+        one_by_one_block(body, nodes, begin, end, dt, sums, my_erode);
+      } else if (hex) {
+        hex_block(body, nodes, begin, end, dt, sums, my_erode);
+      } else {
+        quad_block(body, nodes, begin, end, dt, sums, my_erode);
       }
     }
 
@@ -636,9 +942,9 @@ FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
       const int end = body.node_elem_offsets[local + 1];
       Vec3 sum = Vec3::Zero();
       for (int k = begin; k < end; ++k) {
-        const int entry = body.node_elem_entries[static_cast<std::size_t>(k)];
-        const std::size_t e = static_cast<std::size_t>(entry >> 3);
-        if (body.active[e]) sum += body.elem_force[e][static_cast<std::size_t>(entry & 7)];
+        const std::size_t entry = std::size_t(body.node_elem_entries[static_cast<std::size_t>(k)]);
+        const std::size_t e = entry >> 3;
+        if (body.active[e]) sum += body.elem_force[(e << shift) + (entry & 7)];
       }
       nodes.f[static_cast<std::size_t>(n)] += sum;
     }
@@ -658,6 +964,16 @@ FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
   return result;
 }
 
+}  // namespace
+
+FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt) {
+  return internal_forces(body, nodes, dt, true);
+}
+
+FeStepResult fe_internal_forces_one_by_one(FeBody& body, NodeSet& nodes, double dt) {
+  return internal_forces(body, nodes, dt, false);
+}
+
 ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e) {
   ErodedEnergy out;
   const std::size_t k = static_cast<std::size_t>(e);
@@ -673,7 +989,7 @@ ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e) {
   }
   out.internal = body.volume0[k] * body.state[k].e;
   out.mass = body.element_mass[k];
-  body.elem_force[k].fill(Vec3::Zero());
+  zero_forces(body, k);
   body.q[k] = 0.0;
   return out;
 }

@@ -64,14 +64,15 @@ struct FeBody {
   std::vector<int> node_elem_entries;    //   the body's node range, for a deterministic gather
 
   // Every step.
-  std::vector<PointState> state;                // material state at the element centre
-  std::vector<double> volume;                   // current volume, m^3 (2D: per radian)
-  std::vector<double> char_length;              // characteristic length for the time step, m
-  std::vector<double> q;                        // bulk-viscosity pressure, Pa
-  std::vector<std::array<Vec3, 4>> hg;          // stiffness-form hourglass generalised forces
-  std::vector<double> hg_kappa;                 // stiffness-form kappa that hg was built with
-  std::vector<std::uint8_t> active;             // 0 once eroded
-  std::vector<std::array<Vec3, 8>> elem_force;  // scratch: element nodal forces
+  std::vector<PointState> state;        // material state at the element centre
+  std::vector<double> volume;           // current volume, m^3 (2D: per radian)
+  std::vector<double> char_length;      // characteristic length for the time step, m
+  std::vector<double> q;                // bulk-viscosity pressure, Pa
+  std::vector<std::array<Vec3, 4>> hg;  // stiffness-form hourglass generalised forces
+  std::vector<double> hg_kappa;         // stiffness-form kappa that hg was built with
+  std::vector<std::uint8_t> active;     // 0 once eroded
+  std::vector<Vec3> elem_force;         // scratch: element nodal forces, element e's node a at
+                                        //   e * nodes_per_element() + a
 
   std::size_t num_elements() const { return conn.size(); }
   int nodes_per_element() const { return kind == ElementKind::hex8 ? 8 : 4; }
@@ -168,6 +169,11 @@ FeBody make_fe_body(const std::string& name, const AxisymMesh& mesh, const Mater
 // unchanged. Results do not depend on the number of OpenMP threads (sums are
 // taken over fixed blocks of elements combined in block order).
 FeStepResult fe_internal_forces(FeBody& body, NodeSet& nodes, double dt);
+
+// The same step with every element on its own (one element, one
+// update_point call at a time): the slow obvious reference that the phased,
+// lane-wide loop of fe_internal_forces must match to the bit.
+FeStepResult fe_internal_forces_one_by_one(FeBody& body, NodeSet& nodes, double dt);
 
 // What removing one element takes out of the energy budget (2D: per radian).
 struct ErodedEnergy {

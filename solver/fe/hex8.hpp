@@ -59,7 +59,7 @@
 #include <cstdint>
 
 #include "solver/common/types.hpp"
-#include "solver/fe/simd_pair.hpp"
+#include "solver/fe/simd_lanes.hpp"
 
 namespace splat {
 
@@ -71,7 +71,7 @@ using Hex8Vectors = std::array<Vec3, 8>;
 // scalars: Eigen's 3-vectors mix scalar stores with 2-wide packet loads of
 // the same memory, and the store-forwarding stalls cost more than the
 // arithmetic of a whole element. Each kernel is a template on the number type
-// (simd_pair.hpp).
+// (simd_lanes.hpp).
 template <class T>
 struct Hex8FieldT {
   T u[3][8];
@@ -89,7 +89,7 @@ using Hex8GeometryCm = Hex8GeometryCmT<double>;
 // c_u = (1/8) sum_a s_u(a) u_a: butterflies (lo, hi) -> (hi + lo, hi - lo)
 // along xi, then eta, then zeta.
 template <class T>
-inline Hex8FieldT<T> hex8_modes_cm(const Hex8FieldT<T>& n) {
+SPLAT_LANE_INLINE Hex8FieldT<T> hex8_modes_cm(const Hex8FieldT<T>& n) {
   Hex8FieldT<T> m;
   for (int i = 0; i < 3; ++i) {
     const T* u = n.u[i];
@@ -114,7 +114,7 @@ inline Hex8FieldT<T> hex8_modes_cm(const Hex8FieldT<T>& n) {
 
 // u_a = sum_u s_u(a) c_u: the butterflies backwards.
 template <class T>
-inline Hex8FieldT<T> hex8_nodal_cm(const Hex8FieldT<T>& m) {
+SPLAT_LANE_INLINE Hex8FieldT<T> hex8_nodal_cm(const Hex8FieldT<T>& m) {
   Hex8FieldT<T> n;
   for (int i = 0; i < 3; ++i) {
     const T* c = m.u[i];
@@ -140,7 +140,7 @@ inline Hex8FieldT<T> hex8_nodal_cm(const Hex8FieldT<T>& m) {
 // g_u and the exact volume from the position modes (formulas in the header
 // comment above); only modes 1..6 are read.
 template <class T>
-inline Hex8GeometryCmT<T> hex8_geometry_cm(const Hex8FieldT<T>& x) {
+SPLAT_LANE_INLINE Hex8GeometryCmT<T> hex8_geometry_cm(const Hex8FieldT<T>& x) {
   const auto& c = x.u;
   // a x b, component i, of modes p and q.
   auto cross = [&c](int p, int q, int i) {
@@ -166,8 +166,8 @@ inline Hex8GeometryCmT<T> hex8_geometry_cm(const Hex8FieldT<T>& x) {
 
 // L = (1/V) sum_u w_u (x) g_u, 1/s.
 template <class T>
-inline void hex8_velocity_gradient_cm(const Hex8FieldT<T>& w, const Hex8GeometryCmT<T>& g,
-                                      T L[3][3]) {
+SPLAT_LANE_INLINE void hex8_velocity_gradient_cm(const Hex8FieldT<T>& w,
+                                                 const Hex8GeometryCmT<T>& g, T L[3][3]) {
   const T inv_v = 1.0 / g.volume;  // one division, not nine
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {
@@ -189,8 +189,8 @@ inline Mat3 hex8_velocity_gradient_cm(const Hex8Field& w, const Hex8GeometryCm& 
 // qdot^k = 8 (w_{3+k} - L h_k), k = 1..4, m/s (as hex8_hourglass_rates):
 // qdot[k][i] is component i.
 template <class T>
-inline void hex8_hourglass_rates_cm(const Hex8FieldT<T>& w, const Hex8FieldT<T>& x, const T L[3][3],
-                                    T qdot[4][3]) {
+SPLAT_LANE_INLINE void hex8_hourglass_rates_cm(const Hex8FieldT<T>& w, const Hex8FieldT<T>& x,
+                                               const T L[3][3], T qdot[4][3]) {
   for (int k = 0; k < 4; ++k) {
     const int u = 4 + k;
     for (int i = 0; i < 3; ++i) {
@@ -213,8 +213,8 @@ inline std::array<Vec3, 4> hex8_hourglass_rates_cm(const Hex8Field& w, const Hex
 // f_a = -V sigma b_a - sum_k gamma^k_a Q^k (as hex8_forces), N; Q[k][i] is
 // component i of Q^k.
 template <class T>
-inline Hex8FieldT<T> hex8_forces_cm(const T sigma[3][3], const Hex8GeometryCmT<T>& g,
-                                    const Hex8FieldT<T>& x, const T Q[4][3]) {
+SPLAT_LANE_INLINE Hex8FieldT<T> hex8_forces_cm(const T sigma[3][3], const Hex8GeometryCmT<T>& g,
+                                               const Hex8FieldT<T>& x, const T Q[4][3]) {
   // f_a = sum_{u=1..6} s_u(a) F_u - sum_k s_{3+k}(a) Q^k,
   // F_u = -S g_u, S = (sigma - M / V) / 8, M = 8 sum_k Q^k (x) h_k.
   const T inv_v = 1.0 / g.volume;
@@ -250,7 +250,7 @@ inline Hex8Field hex8_forces_cm(const Mat3& sigma, const Hex8GeometryCm& g, cons
 
 // (2 A)^2 of the largest face (A its area from the diagonals), m^4.
 template <class T>
-inline T hex8_max_face_area2_cm(const Hex8FieldT<T>& x) {
+SPLAT_LANE_INLINE T hex8_max_face_area2_cm(const Hex8FieldT<T>& x) {
   // Faces of the unit cube by their node indices, in cyclic order.
   constexpr int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};

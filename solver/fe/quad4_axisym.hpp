@@ -45,7 +45,7 @@
 #include <cmath>
 
 #include "solver/common/types.hpp"
-#include "solver/fe/simd_pair.hpp"
+#include "solver/fe/simd_lanes.hpp"
 
 namespace splat {
 
@@ -72,7 +72,7 @@ struct Quad4GradientCmT {
 using Quad4GradientCm = Quad4GradientCmT<double>;
 
 template <class T>
-inline Quad4GradientCmT<T> quad4_axisym_gradient_cm(const Quad4FieldT<T>& x) {
+SPLAT_LANE_INLINE Quad4GradientCmT<T> quad4_axisym_gradient_cm(const Quad4FieldT<T>& x) {
   const T r0 = x.u[0][0], r1 = x.u[0][1], r2 = x.u[0][2], r3 = x.u[0][3];
   const T z0 = x.u[1][0], z1 = x.u[1][1], z2 = x.u[1][2], z3 = x.u[1][3];
   Quad4GradientCmT<T> g;
@@ -94,8 +94,9 @@ inline Quad4GradientCmT<T> quad4_axisym_gradient_cm(const Quad4FieldT<T>& x) {
 
 // In-plane velocity gradient L2[i][j] and hoop rate L_thth, 1/s.
 template <class T>
-inline void quad4_axisym_velocity_gradient_cm(const Quad4FieldT<T>& v, const Quad4GradientCmT<T>& g,
-                                              T L2[2][2], T& L_thth) {
+SPLAT_LANE_INLINE void quad4_axisym_velocity_gradient_cm(const Quad4FieldT<T>& v,
+                                                         const Quad4GradientCmT<T>& g, T L2[2][2],
+                                                         T& L_thth) {
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
       T sum = v.u[i][0] * g.b[j][0];
@@ -121,8 +122,9 @@ inline Mat3 quad4_axisym_velocity_gradient_cm(const Quad4Field& v, const Quad4Gr
 // Internal forces per radian from the (r, z, theta) Cauchy stress components
 // s_rr, s_rz, s_zr, s_zz, s_thth (overwrites f), N.
 template <class T>
-inline void quad4_axisym_stress_forces_cm(T s_rr, T s_rz, T s_zr, T s_zz, T s_thth,
-                                          const Quad4GradientCmT<T>& g, Quad4FieldT<T>& f) {
+SPLAT_LANE_INLINE void quad4_axisym_stress_forces_cm(T s_rr, T s_rz, T s_zr, T s_zz, T s_thth,
+                                                     const Quad4GradientCmT<T>& g,
+                                                     Quad4FieldT<T>& f) {
   const T V = g.volume;
   const T hoop = 0.25 * s_thth * g.area;
   for (int a = 0; a < 4; ++a) {
@@ -139,7 +141,7 @@ inline void quad4_axisym_stress_forces_cm(const Mat3& sigma, const Quad4Gradient
 
 // L_c = A / max(|x_2 - x_0|, |x_3 - x_1|), m.
 template <class T>
-inline T quad4_axisym_characteristic_length_cm(const Quad4FieldT<T>& x, T area) {
+SPLAT_LANE_INLINE T quad4_axisym_characteristic_length_cm(const Quad4FieldT<T>& x, T area) {
   const T dr0 = x.u[0][2] - x.u[0][0], dz0 = x.u[1][2] - x.u[1][0];
   const T dr1 = x.u[0][3] - x.u[0][1], dz1 = x.u[1][3] - x.u[1][1];
   const T d2 = lane_max(dr0 * dr0 + dz0 * dz0, dr1 * dr1 + dz1 * dz1);
@@ -148,8 +150,8 @@ inline T quad4_axisym_characteristic_length_cm(const Quad4FieldT<T>& x, T area) 
 
 // gamma_a of the single hourglass mode, -.
 template <class T>
-inline std::array<T, 4> quad4_axisym_hourglass_vector_cm(const Quad4FieldT<T>& x,
-                                                         const Quad4GradientCmT<T>& g) {
+SPLAT_LANE_INLINE std::array<T, 4> quad4_axisym_hourglass_vector_cm(const Quad4FieldT<T>& x,
+                                                                    const Quad4GradientCmT<T>& g) {
   constexpr double base[4] = {1.0, -1.0, 1.0, -1.0};
   T h[2];  // sum_b Gamma_b x_b
   for (int i = 0; i < 2; ++i) h[i] = (x.u[i][0] - x.u[i][1]) + (x.u[i][2] - x.u[i][3]);
@@ -160,8 +162,8 @@ inline std::array<T, 4> quad4_axisym_hourglass_vector_cm(const Quad4FieldT<T>& x
 
 // qdot = sum_a gamma_a v_a, m/s.
 template <class T>
-inline void quad4_axisym_hourglass_rate_cm(const std::array<T, 4>& gamma, const Quad4FieldT<T>& v,
-                                           T qdot[2]) {
+SPLAT_LANE_INLINE void quad4_axisym_hourglass_rate_cm(const std::array<T, 4>& gamma,
+                                                      const Quad4FieldT<T>& v, T qdot[2]) {
   for (int i = 0; i < 2; ++i) {
     T sum = T{};
     for (int a = 0; a < 4; ++a) sum += gamma[a] * v.u[i][a];
@@ -171,8 +173,9 @@ inline void quad4_axisym_hourglass_rate_cm(const std::array<T, 4>& gamma, const 
 
 // Adds the viscous hourglass forces; returns a_h |qdot|^2 >= 0, W per radian.
 template <class T>
-inline T quad4_axisym_hourglass_viscous_cm(const std::array<T, 4>& gamma, const Quad4FieldT<T>& v,
-                                           T a_h, Quad4FieldT<T>& f) {
+SPLAT_LANE_INLINE T quad4_axisym_hourglass_viscous_cm(const std::array<T, 4>& gamma,
+                                                      const Quad4FieldT<T>& v, T a_h,
+                                                      Quad4FieldT<T>& f) {
   T qdot[2];
   quad4_axisym_hourglass_rate_cm(gamma, v, qdot);
   const T Q[2] = {a_h * qdot[0], a_h * qdot[1]};
@@ -184,18 +187,26 @@ inline T quad4_axisym_hourglass_viscous_cm(const std::array<T, 4>& gamma, const 
 // Rotates Q (N per radian) by the in-plane rotation R (the (r, z) block of a
 // 3x3 rotation), adds kappa dt qdot, adds f_a = -gamma_a Q; returns Q . qdot,
 // W per radian.
-inline double quad4_axisym_hourglass_stiffness_cm(const std::array<double, 4>& gamma,
-                                                  const Quad4Field& v, double kappa, double dt,
-                                                  const Mat3& R, double Q[2], Quad4Field& f) {
-  double qdot[2];
+template <class T>
+SPLAT_LANE_INLINE T quad4_axisym_hourglass_stiffness_cm(const std::array<T, 4>& gamma,
+                                                        const Quad4FieldT<T>& v, T kappa, double dt,
+                                                        T R00, T R01, T R10, T R11, T Q[2],
+                                                        Quad4FieldT<T>& f) {
+  T qdot[2];
   quad4_axisym_hourglass_rate_cm(gamma, v, qdot);
-  const double Q0 = (R(0, 0) * Q[0] + R(0, 1) * Q[1]) + (kappa * dt) * qdot[0];
-  const double Q1 = (R(1, 0) * Q[0] + R(1, 1) * Q[1]) + (kappa * dt) * qdot[1];
+  const T Q0 = (R00 * Q[0] + R01 * Q[1]) + (kappa * dt) * qdot[0];
+  const T Q1 = (R10 * Q[0] + R11 * Q[1]) + (kappa * dt) * qdot[1];
   Q[0] = Q0;
   Q[1] = Q1;
   for (int i = 0; i < 2; ++i)
     for (int a = 0; a < 4; ++a) f.u[i][a] -= gamma[a] * Q[i];
   return Q[0] * qdot[0] + Q[1] * qdot[1];
+}
+inline double quad4_axisym_hourglass_stiffness_cm(const std::array<double, 4>& gamma,
+                                                  const Quad4Field& v, double kappa, double dt,
+                                                  const Mat3& R, double Q[2], Quad4Field& f) {
+  return quad4_axisym_hourglass_stiffness_cm(gamma, v, kappa, dt, R(0, 0), R(0, 1), R(1, 0),
+                                             R(1, 1), Q, f);
 }
 
 struct Quad4Gradient {

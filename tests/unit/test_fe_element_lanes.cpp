@@ -1,9 +1,10 @@
-// The element loop (fe_internal_forces) runs neighbouring elements two at a
-// time in SSE2 lanes and single elements where a pair is not possible. Checked
-// against the slow obvious assembly: each element on its own through the
-// Eigen-form kernels (hex8.hpp, quad4_axisym.hpp), summed into the nodes in
-// element order; and, with material updates (dt > 0), against the same body
-// whose pairs are shifted by one element.
+// The element loop (fe_internal_forces) runs each block of elements in
+// phases, W elements per vector lane group (simd_lanes.hpp). Checked against
+// the slow obvious assembly: each element on its own through the Eigen-form
+// kernels (hex8.hpp, quad4_axisym.hpp), summed into the nodes in element
+// order; with material updates (dt > 0), against the one-element path
+// (fe_internal_forces_one_by_one) to the bit, and against the same body whose
+// lane groups are shifted by one element.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -132,12 +133,12 @@ void check_against_reference(const Mesh& mesh) {
     ASSERT_LE((nodes.f[n] - ref[n]).norm(), 1e-13 * scale) << "node " << n;
 }
 
-TEST(fe_element_pairs, hex_forces_match_element_by_element_assembly) {
+TEST(fe_element_lanes, hex_forces_match_element_by_element_assembly) {
   std::mt19937_64 rng(42);
   check_against_reference(jittered_box(5, 4, 3, 1e-4, 0.15, rng));  // 60 elements, one block
 }
 
-TEST(fe_element_pairs, quad_forces_match_element_by_element_assembly) {
+TEST(fe_element_lanes, quad_forces_match_element_by_element_assembly) {
   std::mt19937_64 rng(43);
   check_against_reference(jittered_rectangle(9, 7, 1e-4, 0.2, rng));  // 63 elements
 }
@@ -165,7 +166,10 @@ void check_pairing_shift(const Mesh& mesh) {
   }
   int plastic = 0;
   for (std::size_t e = 1; e < body[0].num_elements(); ++e) {
-    ASSERT_EQ(body[0].elem_force[e], body[1].elem_force[e]) << "element " << e;
+    for (int a = 0; a < body[0].nodes_per_element(); ++a) {
+      const std::size_t k = e * static_cast<std::size_t>(body[0].nodes_per_element()) + a;
+      ASSERT_EQ(body[0].elem_force[k], body[1].elem_force[k]) << "element " << e;
+    }
     ASSERT_EQ(body[0].state[e].s, body[1].state[e].s) << "element " << e;
     ASSERT_EQ(body[0].state[e].p, body[1].state[e].p) << "element " << e;
     ASSERT_EQ(body[0].state[e].eps_p, body[1].state[e].eps_p) << "element " << e;
@@ -176,14 +180,120 @@ void check_pairing_shift(const Mesh& mesh) {
   EXPECT_GT(plastic, 0);  // the return mapping ran in the lanes too
 }
 
-TEST(fe_element_pairs, hex_results_do_not_depend_on_the_pairing) {
+TEST(fe_element_lanes, hex_results_do_not_depend_on_the_pairing) {
   std::mt19937_64 rng(45);
   check_pairing_shift(jittered_box(5, 4, 3, 1e-4, 0.15, rng));
 }
 
-TEST(fe_element_pairs, quad_results_do_not_depend_on_the_pairing) {
+TEST(fe_element_lanes, quad_results_do_not_depend_on_the_pairing) {
   std::mt19937_64 rng(46);
   check_pairing_shift(jittered_rectangle(9, 7, 1e-4, 0.2, rng));
+}
+
+// Steps with material updates, an eroded element and elements inverted by a
+// node pushed through them, through the lane loop (body 0) and the
+// one-element path (body 1): forces, states, held hourglass forces and every
+// reduction the same to the bit.
+template <class Mesh>
+void check_lanes_against_one_by_one(const Mesh& mesh, const FeSettings& settings) {
+  std::array<NodeSet, 2> nodes;
+  std::array<FeBody, 2> body;
+  std::array<std::vector<FeStepResult>, 2> results;
+  for (int b = 0; b < 2; ++b) {
+    std::mt19937_64 rng(47);
+    body[b] = make_fe_body("b", mesh, jc_copper(), no_damage(), settings, Vec3::Zero(), 300.0, 1,
+                           nodes[b]);
+    randomise(body[b], nodes[b], rng);
+    for (Vec3& v : nodes[b].v) v *= 1e2;  // large enough to yield
+    erode_element(body[b], nodes[b], 5);
+    // Push the far corner of element 70 through its near corner.
+    const std::array<int, 8>& cn = body[b].conn[70];
+    const int far = body[b].kind == ElementKind::hex8 ? 6 : 2;
+    nodes[b].x[cn[far]] = nodes[b].x[cn[0]] - 0.5 * (nodes[b].x[cn[far]] - nodes[b].x[cn[0]]);
+    const double dt = 1e-9;
+    for (int step = 0; step < 4; ++step) {
+      for (std::size_t n = 0; n < nodes[b].size(); ++n) nodes[b].x[n] += dt * nodes[b].v[n];
+      for (Vec3& f : nodes[b].f) f.setZero();
+      results[b].push_back(b == 0 ? fe_internal_forces(body[b], nodes[b], dt)
+                                  : fe_internal_forces_one_by_one(body[b], nodes[b], dt));
+    }
+  }
+  for (std::size_t n = 0; n < nodes[0].size(); ++n)
+    ASSERT_EQ(nodes[0].f[n], nodes[1].f[n]) << "node " << n;
+  int plastic = 0;
+  for (std::size_t e = 0; e < body[0].num_elements(); ++e) {
+    const PointState &a = body[0].state[e], &b = body[1].state[e];
+    ASSERT_EQ(a.s, b.s) << "element " << e;
+    ASSERT_EQ(a.p, b.p) << "element " << e;
+    ASSERT_EQ(a.e, b.e) << "element " << e;
+    ASSERT_EQ(a.eps_p, b.eps_p) << "element " << e;
+    ASSERT_EQ(a.T, b.T) << "element " << e;
+    ASSERT_EQ(body[0].hg[e], body[1].hg[e]) << "element " << e;
+    ASSERT_EQ(body[0].hg_kappa[e], body[1].hg_kappa[e]) << "element " << e;
+    ASSERT_EQ(body[0].q[e], body[1].q[e]) << "element " << e;
+    ASSERT_EQ(body[0].volume[e], body[1].volume[e]) << "element " << e;
+    ASSERT_EQ(body[0].char_length[e], body[1].char_length[e]) << "element " << e;
+    for (int node = 0; node < body[0].nodes_per_element(); ++node) {
+      const std::size_t k = e * static_cast<std::size_t>(body[0].nodes_per_element()) + node;
+      ASSERT_EQ(body[0].elem_force[k], body[1].elem_force[k]) << "element " << e;
+    }
+    plastic += a.eps_p > 0.0;
+  }
+  EXPECT_GT(plastic, 0);
+  for (std::size_t k = 0; k < results[0].size(); ++k) {
+    const FeStepResult &a = results[0][k], &b = results[1][k];
+    ASSERT_EQ(a.dt_stable, b.dt_stable) << "step " << k;
+    ASSERT_EQ(a.hourglass_power, b.hourglass_power) << "step " << k;
+    ASSERT_EQ(a.viscosity_power, b.viscosity_power) << "step " << k;
+    ASSERT_EQ(a.max_return_iterations, b.max_return_iterations) << "step " << k;
+    ASSERT_EQ(a.return_failed, b.return_failed) << "step " << k;
+    ASSERT_EQ(a.inverted, b.inverted) << "step " << k;
+    ASSERT_EQ(a.to_erode, b.to_erode) << "step " << k;
+    EXPECT_GT(a.viscosity_power, 0.0);
+    EXPECT_TRUE(a.inverted > 0 || !a.to_erode.empty());  // the inverted path ran
+  }
+}
+
+FeSettings stiffness_form() {
+  FeSettings s;
+  s.stiffness_hourglass = true;
+  return s;
+}
+
+FeSettings with_erosion() {
+  FeSettings s;
+  s.erosion = true;
+  return s;
+}
+
+TEST(fe_element_lanes, hex_lanes_match_one_element_path_viscous_hourglass) {
+  std::mt19937_64 rng(48);
+  check_lanes_against_one_by_one(jittered_box(7, 6, 5, 1e-4, 0.15, rng), FeSettings{});
+}
+
+TEST(fe_element_lanes, hex_lanes_match_one_element_path_stiffness_hourglass) {
+  std::mt19937_64 rng(49);
+  check_lanes_against_one_by_one(jittered_box(7, 6, 5, 1e-4, 0.15, rng), stiffness_form());
+}
+
+TEST(fe_element_lanes, hex_lanes_match_one_element_path_with_erosion) {
+  std::mt19937_64 rng(50);
+  check_lanes_against_one_by_one(jittered_box(7, 6, 5, 1e-4, 0.15, rng), with_erosion());
+}
+
+TEST(fe_element_lanes, quad_lanes_match_one_element_path_viscous_hourglass) {
+  std::mt19937_64 rng(51);
+  check_lanes_against_one_by_one(jittered_rectangle(19, 13, 1e-4, 0.2, rng), FeSettings{});
+}
+
+TEST(fe_element_lanes, quad_lanes_match_one_element_path_stiffness_hourglass) {
+  std::mt19937_64 rng(52);
+  check_lanes_against_one_by_one(jittered_rectangle(19, 13, 1e-4, 0.2, rng), stiffness_form());
+}
+
+TEST(fe_element_lanes, quad_lanes_match_one_element_path_with_erosion) {
+  std::mt19937_64 rng(53);
+  check_lanes_against_one_by_one(jittered_rectangle(19, 13, 1e-4, 0.2, rng), with_erosion());
 }
 
 }  // namespace
