@@ -30,7 +30,10 @@ namespace {
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
 // Particles per reduction block: partial sums over fixed blocks combined in
-// block order do not depend on the thread count.
+// block order do not depend on the thread count. Blocks are handed out
+// dynamically (which thread computes a block changes no bit): particles with
+// few pairs (surfaces) and a thread that the OS pauses no longer hold the
+// other thread at the barrier.
 constexpr std::size_t block_size = 64;
 constexpr long long min_parallel_particles = 256;
 
@@ -53,7 +56,7 @@ template <class Body>
 void for_blocks(std::size_t n, std::vector<BlockSums>& blocks, Body&& body) {
   const long long nb = static_cast<long long>(num_blocks(n));
   blocks.assign(static_cast<std::size_t>(nb), BlockSums{});
-  SPLAT_OMP(omp parallel for schedule(static) if (static_cast<long long>(n) >= min_parallel_particles))
+  SPLAT_OMP(omp parallel for schedule(dynamic) if (static_cast<long long>(n) >= min_parallel_particles))
   for (long long bk = 0; bk < nb; ++bk) {
     const std::size_t k = static_cast<std::size_t>(bk);
     const std::size_t end = std::min(n, (k + 1) * block_size);
@@ -66,7 +69,7 @@ template <class Body>
 void for_block_ranges(std::size_t n, std::vector<BlockSums>& blocks, Body&& body) {
   const long long nb = static_cast<long long>(num_blocks(n));
   blocks.assign(static_cast<std::size_t>(nb), BlockSums{});
-  SPLAT_OMP(omp parallel for schedule(static) if (static_cast<long long>(n) >= min_parallel_particles))
+  SPLAT_OMP(omp parallel for schedule(dynamic) if (static_cast<long long>(n) >= min_parallel_particles))
   for (long long bk = 0; bk < nb; ++bk) {
     const std::size_t k = static_cast<std::size_t>(bk);
     body(k * block_size, std::min(n, (k + 1) * block_size), blocks[k]);
@@ -166,11 +169,30 @@ inline void gather(vd& out, const double* __restrict p, const std::size_t* j, st
   }
 static_assert(lanes == 4);
 
-// Sum of the lanes in lane order.
-inline double lane_sum(const vd& v) {
-  double s = v[0];
-  for (int l = 1; l < lanes; ++l) s += v[l];
-  return s;
+// out = sqrt(x) per lane, correctly rounded (IEEE) in every clone. SSE2 is
+// part of x86-64, so its packed root serves all clones, without the errno
+// branch std::sqrt carries.
+inline void sqrt_lanes(vd& out, const vd& x) {
+#if defined(__GNUC__) && defined(__SSE2__)
+  using v2d = double __attribute__((vector_size(2 * sizeof(double))));
+  const v2d lo = __builtin_ia32_sqrtpd(v2d{x[0], x[1]});
+  const v2d hi = __builtin_ia32_sqrtpd(v2d{x[2], x[3]});
+  out = vd{lo[0], lo[1], hi[0], hi[1]};
+#else
+  double r[lanes];
+  for (int l = 0; l < lanes; ++l) r[l] = std::sqrt(x[l]);
+  out = SPLAT_LANES(r);
+#endif
+}
+
+// out = {sum a, sum b, sum c, sum d}, each lane sum as (l0 + l1) + (l2 + l3).
+inline void lane_sums4(vd& out, const vd& a, const vd& b, const vd& c, const vd& d) {
+  using vindex = long __attribute__((vector_size(lanes * sizeof(long))));
+  const vindex even = {0, 4, 2, 6}, odd = {1, 5, 3, 7}, low = {0, 1, 4, 5}, high = {2, 3, 6, 7};
+  // ab = {a0 + a1, b0 + b1, a2 + a3, b2 + b3}, cd likewise.
+  const vd ab = __builtin_shuffle(a, b, even) + __builtin_shuffle(a, b, odd);
+  const vd cd = __builtin_shuffle(c, d, even) + __builtin_shuffle(c, d, odd);
+  out = __builtin_shuffle(ab, cd, low) + __builtin_shuffle(ab, cd, high);
 }
 
 // The pairs k0 .. k0 + lanes - 1 of particle i (list end `end`): neighbour
@@ -214,9 +236,11 @@ SPLAT_TARGET_CLONES void deformation(const SphBody& b, const NodeSet& nodes, con
     broadcast(xi[a], x[3 * i + a]);
     broadcast(vi[a], v[3 * i + a]);
   }
-  vd A[3][3] = {}, Adot[3][3] = {};
+  // The first chunk (padding only if the list is empty) sets the sums: no
+  // zeroed accumulators in memory.
+  vd A[3][3], Adot[3][3];
   const int begin = b.pairs.offsets[i], end = b.pairs.offsets[i + 1];
-  for (int k0 = begin; k0 < end; k0 += lanes) {
+  for (int k0 = begin; k0 == begin || k0 < end; k0 += lanes) {
     PairLanes p;
     load_lanes<with_mirrors, false>(b, i, k0, end, p);
     const vd t = SPLAT_LANES(p.t);
@@ -242,17 +266,28 @@ SPLAT_TARGET_CLONES void deformation(const SphBody& b, const NodeSet& nodes, con
     }
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) {
-        A[r][c] += dx[r] * g[c];
-        Adot[r][c] += dv[r] * g[c];
+        if (k0 == begin) {
+          A[r][c] = dx[r] * g[c];
+          Adot[r][c] = dv[r] * g[c];
+        } else {
+          A[r][c] += dx[r] * g[c];
+          Adot[r][c] += dv[r] * g[c];
+        }
       }
     }
   }
+  // Lane sums four at a time: A(r, c) = sums[(3 r + c) / 4][(3 r + c) % 4].
+  const vd zero = {};
+  vd sums[5];
+  lane_sums4(sums[0], A[0][0], A[0][1], A[0][2], A[1][0]);
+  lane_sums4(sums[1], A[1][1], A[1][2], A[2][0], A[2][1]);
+  lane_sums4(sums[2], A[2][2], Adot[0][0], Adot[0][1], Adot[0][2]);
+  lane_sums4(sums[3], Adot[1][0], Adot[1][1], Adot[1][2], Adot[2][0]);
+  lane_sums4(sums[4], Adot[2][1], Adot[2][2], zero, zero);
   Mat3 As, Adots;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) {
-      As(r, c) = lane_sum(A[r][c]);
-      Adots(r, c) = lane_sum(Adot[r][c]);
-    }
+  for (int e = 0; e < 9; ++e) {
+    As(e / 3, e % 3) = sums[e / 4][e % 4];
+    Adots(e / 3, e % 3) = sums[(e + 9) / 4][(e + 9) % 4];
   }
   F = b.null_projector[i];
   F.noalias() += As * b.B[i].transpose();
@@ -372,9 +407,8 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
     const vmask act = {active[p.j[0]] != 0 ? -1L : 0L, active[p.j[1]] != 0 ? -1L : 0L,
                        active[p.j[2]] != 0 ? -1L : 0L, active[p.j[3]] != 0 ? -1L : 0L};
     const vmask valid = act & (r_sq > zero);
-    double r_l[lanes];
-    for (int l = 0; l < lanes; ++l) r_l[l] = std::sqrt(r_sq[l]);
-    const vd r = SPLAT_LANES(r_l);
+    vd r;
+    sqrt_lanes(r, r_sq);
     const vd inv_r = valid ? 1.0 / r : zero;
     const vd r_sq_valid = valid ? r_sq : inf;
     r_sq_min = r_sq_valid < r_sq_min ? r_sq_valid : r_sq_min;
@@ -411,12 +445,16 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
       fh[a] -= hg * xij[a];
     }
   }
+  vd sums[3];
+  lane_sums4(sums[0], a_sum[0], a_sum[1], a_sum[2], fp[0]);
+  lane_sums4(sums[1], fp[1], fp[2], fv[0], fv[1]);
+  lane_sums4(sums[2], fv[2], fh[0], fh[1], fh[2]);
   PairSums out;
-  const Vec3 a_i(lane_sum(a_sum[0]), lane_sum(a_sum[1]), lane_sum(a_sum[2]));
-  const Vec3 fp_i(lane_sum(fp[0]), lane_sum(fp[1]), lane_sum(fp[2]));
+  const Vec3 a_i(sums[0][0], sums[0][1], sums[0][2]);
+  const Vec3 fp_i(sums[0][3], sums[1][0], sums[1][1]);
   out.f_stress = Vi * (b.PB[i] * a_i + fp_i);
-  out.f_visc = Vec3(lane_sum(fv[0]), lane_sum(fv[1]), lane_sum(fv[2]));
-  out.f_hg = Vec3(lane_sum(fh[0]), lane_sum(fh[1]), lane_sum(fh[2]));
+  out.f_visc = Vec3(sums[1][2], sums[1][3], sums[2][0]);
+  out.f_hg = Vec3(sums[2][1], sums[2][2], sums[2][3]);
   double r_sq = r_sq_min[0], mu_max = max_mu[0];
   for (int l = 1; l < lanes; ++l) {
     r_sq = std::min(r_sq, r_sq_min[l]);
@@ -732,7 +770,7 @@ template <class Term>
 Vec2 block_sum(std::size_t n, Term&& term) {
   const long long nb = static_cast<long long>(num_blocks(n));
   std::vector<Vec2> part(static_cast<std::size_t>(nb), Vec2::Zero());
-  SPLAT_OMP(omp parallel for schedule(static) if (static_cast<long long>(n) >= min_parallel_particles))
+  SPLAT_OMP(omp parallel for schedule(dynamic) if (static_cast<long long>(n) >= min_parallel_particles))
   for (long long bk = 0; bk < nb; ++bk) {
     const std::size_t k = static_cast<std::size_t>(bk);
     const std::size_t end = std::min(n, (k + 1) * block_size);
