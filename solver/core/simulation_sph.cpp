@@ -53,12 +53,9 @@ Vec3 Simulation::Impl::sph_dissipative_power() const {
   const NodeSet& n = model.nodes;
   double visc = 0.0, hg = 0.0;
   for (const SphBody& b : model.sph_bodies) {
-    if (b.f_hg.size() != b.size()) continue;  // before the first force evaluation
-    for (std::size_t k = 0; k < b.size(); ++k) {
-      const Vec3& v = n.v[b.node_begin + k];
-      visc -= b.f_visc[k].dot(v);
-      hg -= b.f_hg[k].dot(v);
-    }
+    const SphEnergySums p = sph_stabiliser_power(b, n);
+    visc += p.viscosity;
+    hg += p.hourglass;
   }
   return Vec3(visc, hg, 0.0);
 }
@@ -78,10 +75,9 @@ void Simulation::Impl::sph_boundary_forces() {
 
 void Simulation::Impl::sph_energies(double& internal, double& plastic) const {
   for (const SphBody& b : model.sph_bodies) {
-    internal += sph_internal_energy(b);
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      if (b.active[i]) plastic += b.volume0[i] * b.state[i].plastic_work;
-    }
+    const SphEnergySums e = sph_energy_sums(b);
+    internal += e.internal;
+    plastic += e.plastic;
   }
 }
 

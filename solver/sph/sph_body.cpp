@@ -15,10 +15,10 @@
 #define SPLAT_OMP(directive)
 #endif
 
-// The pair loops are also compiled for AVX2, chosen at run time (never
+// The pair loops are also compiled for AVX2 and AVX-512, chosen at run time (never
 // -march=native: the build must run on machines without it).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define SPLAT_TARGET_CLONES __attribute__((target_clones("avx2", "default")))
+#define SPLAT_TARGET_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define SPLAT_TARGET_CLONES
 #endif
@@ -30,7 +30,10 @@ namespace {
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
 // Particles per reduction block: partial sums over fixed blocks combined in
-// block order do not depend on the thread count.
+// block order do not depend on the thread count. Blocks are handed out
+// dynamically (which thread computes a block changes no bit): particles with
+// few pairs (surfaces) and a thread that the OS pauses no longer hold the
+// other thread at the barrier.
 constexpr std::size_t block_size = 64;
 constexpr long long min_parallel_particles = 256;
 
@@ -53,12 +56,45 @@ template <class Body>
 void for_blocks(std::size_t n, std::vector<BlockSums>& blocks, Body&& body) {
   const long long nb = static_cast<long long>(num_blocks(n));
   blocks.assign(static_cast<std::size_t>(nb), BlockSums{});
-  SPLAT_OMP(omp parallel for schedule(static) if (static_cast<long long>(n) >= min_parallel_particles))
+  SPLAT_OMP(omp parallel for schedule(dynamic) if (static_cast<long long>(n) >= min_parallel_particles))
   for (long long bk = 0; bk < nb; ++bk) {
     const std::size_t k = static_cast<std::size_t>(bk);
     const std::size_t end = std::min(n, (k + 1) * block_size);
     for (std::size_t i = k * block_size; i < end; ++i) body(i, blocks[k]);
   }
+}
+
+// Runs body(first, last, sums) for every block [first, last), in parallel.
+template <class Body>
+void for_block_ranges(std::size_t n, std::vector<BlockSums>& blocks, Body&& body) {
+  const long long nb = static_cast<long long>(num_blocks(n));
+  blocks.assign(static_cast<std::size_t>(nb), BlockSums{});
+  SPLAT_OMP(omp parallel for schedule(dynamic) if (static_cast<long long>(n) >= min_parallel_particles))
+  for (long long bk = 0; bk < nb; ++bk) {
+    const std::size_t k = static_cast<std::size_t>(bk);
+    body(k * block_size, std::min(n, (k + 1) * block_size), blocks[k]);
+  }
+}
+
+// Stand-in for the batched material update update_points (solver/material,
+// being written): the same results as update_point on states[index[k]] with
+// d_eps[k], J_new[k], length[k] for k < n, results in out[k].
+static void update_points_standin(const Material& m, const MaterialConstants& mc,
+                                  const ModelSwitches& sw, PointState* states, const int* index,
+                                  std::size_t n, const Mat3* d_eps, const double* J_new, double dt,
+                                  const double* length, PointUpdateResult* out) {
+  for (std::size_t k = 0; k < n; ++k) {
+    out[k] = update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k]);
+  }
+}
+
+// The cofactor matrix det(F) F^-T of F.
+Mat3 cofactor(const Mat3& F) {
+  Mat3 c;
+  c.col(0) = F.col(1).cross(F.col(2));
+  c.col(1) = F.col(2).cross(F.col(0));
+  c.col(2) = F.col(0).cross(F.col(1));
+  return c;
 }
 
 void check_settings(const SphSettings& s) {
@@ -73,37 +109,6 @@ void check_settings(const SphSettings& s) {
     bad("min_correction_eigenvalue must be in [0, 1)");
   }
   if (!(s.max_h_growth >= 1.0)) bad("max_h_growth must be >= 1");
-}
-
-// F and Fdot of particle i from the current positions and velocities:
-// F_i = N_i + A_i B_i^T, Fdot_i = Adot_i B_i^T with
-// A_i = sum_j (op(x_j) - x_i) (x) V_j g_ij, Adot_i = sum_j (S v_j - v_i) (x) V_j g_ij
-// (V_j gc_ij = B_i V_j g_ij, so the correction leaves the pair loop).
-inline void deformation(const SphBody& b, const NodeSet& nodes, bool mirrors, std::size_t i,
-                        Mat3& F, Mat3& Fdot) {
-  const std::size_t base = b.node_begin;
-  const Vec3 xi = nodes.x[base + i];
-  const Vec3 vi = nodes.v[base + i];
-  const Vec3 Xi = b.X[i];
-  Mat3 A = Mat3::Zero(), Adot = Mat3::Zero();
-  const int end = b.pairs.offsets[i + 1];
-  for (int k = b.pairs.offsets[i]; k < end; ++k) {
-    const std::size_t kk = static_cast<std::size_t>(k);
-    const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
-    const std::uint8_t op = mirrors ? b.pairs.op[kk] : 0;
-    Vec3 xj = nodes.x[base + j], vj = nodes.v[base + j], Xj = b.X[j];
-    if (op != 0) {
-      xj = mirror_point(b.planes, op, xj);
-      vj = mirror_vector(b.planes, op, vj);
-      Xj = mirror_point(b.planes, op, Xj);
-    }
-    const Vec3 g = b.pair_t[kk] * (Xj - Xi);  // V_j g_ij
-    A.noalias() += (xj - xi) * g.transpose();
-    Adot.noalias() += (vj - vi) * g.transpose();
-  }
-  F = b.null_projector[i];
-  F.noalias() += A * b.B[i].transpose();
-  Fdot.noalias() = Adot * b.B[i].transpose();
 }
 
 // The reflections of the symmetry-plane sets op = 0 .. 7 as op(p) = sign p +
@@ -124,6 +129,171 @@ struct Mirrors {
   }
 };
 
+// The pair loops take four pairs of one particle per step in GCC vector
+// extensions (one AVX2 register of doubles; the AVX-512 clone uses its wider
+// register file, the default clone two SSE2 halves). The arithmetic is
+// element-wise IEEE without FMA contraction, so every clone gives the same
+// bits; the lane sums are combined in lane order at the end, so a particle's
+// result does not depend on the thread that computes it. Lanes past the end
+// of a particle's list hold the particle itself with zero pair weights: all
+// their contributions are exact zeros.
+// GCC 12 reports vectors assigned before any use as maybe-uninitialized in
+// the non-AVX clone (split into SSE2 halves); the warning is off for the
+// vector code only.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+constexpr int lanes = 4;
+using vd = double __attribute__((vector_size(lanes * sizeof(double))));
+using vmask = long __attribute__((vector_size(lanes * sizeof(double))));
+static_assert(sizeof(long) == sizeof(double));
+
+// The helpers return through references: a vector returned by value would
+// change the ABI of the non-AVX clone (-Wpsabi).
+inline void broadcast(vd& out, double s) {
+  out = vd{s, s, s, s};
+}
+
+// out[l] = p[stride j[l] + offset].
+inline void gather(vd& out, const double* __restrict p, const std::size_t* j, std::size_t stride,
+                   std::size_t offset) {
+  static_assert(lanes == 4);
+  out = vd{p[stride * j[0] + offset], p[stride * j[1] + offset], p[stride * j[2] + offset],
+           p[stride * j[3] + offset]};
+}
+
+// The vector of the lanes of an array (an initialiser: assigning through a
+// reference draws false -Wmaybe-uninitialized warnings from GCC 12).
+#define SPLAT_LANES(a)             \
+  vd {                             \
+    (a)[0], (a)[1], (a)[2], (a)[3] \
+  }
+static_assert(lanes == 4);
+
+// out = sqrt(x) per lane, correctly rounded (IEEE) in every clone. SSE2 is
+// part of x86-64, so its packed root serves all clones, without the errno
+// branch std::sqrt carries.
+inline void sqrt_lanes(vd& out, const vd& x) {
+#if defined(__GNUC__) && defined(__SSE2__)
+  using v2d = double __attribute__((vector_size(2 * sizeof(double))));
+  const v2d lo = __builtin_ia32_sqrtpd(v2d{x[0], x[1]});
+  const v2d hi = __builtin_ia32_sqrtpd(v2d{x[2], x[3]});
+  out = vd{lo[0], lo[1], hi[0], hi[1]};
+#else
+  double r[lanes];
+  for (int l = 0; l < lanes; ++l) r[l] = std::sqrt(x[l]);
+  out = SPLAT_LANES(r);
+#endif
+}
+
+// out = {sum a, sum b, sum c, sum d}, each lane sum as (l0 + l1) + (l2 + l3).
+inline void lane_sums4(vd& out, const vd& a, const vd& b, const vd& c, const vd& d) {
+  using vindex = long __attribute__((vector_size(lanes * sizeof(long))));
+  const vindex even = {0, 4, 2, 6}, odd = {1, 5, 3, 7}, low = {0, 1, 4, 5}, high = {2, 3, 6, 7};
+  // ab = {a0 + a1, b0 + b1, a2 + a3, b2 + b3}, cd likewise.
+  const vd ab = __builtin_shuffle(a, b, even) + __builtin_shuffle(a, b, odd);
+  const vd cd = __builtin_shuffle(c, d, even) + __builtin_shuffle(c, d, odd);
+  out = __builtin_shuffle(ab, cd, low) + __builtin_shuffle(ab, cd, high);
+}
+
+// The pairs k0 .. k0 + lanes - 1 of particle i (list end `end`): neighbour
+// indices, mirror ops and the per-pair constants, padded past the end.
+struct PairLanes {
+  std::size_t j[lanes];
+  int op[lanes];
+  double t[lanes];   // t_ij = V_j s_ij, 1/m^2 (0 when padded)
+  double w[lanes];   // V_j W_ij / r0^2, 1/m^2 (0 when padded)
+  double dw[lanes];  // m_j W'(r0), kg/m^4 (0 when padded)
+};
+
+template <bool with_mirrors, bool with_stabilisers>
+inline void load_lanes(const SphBody& b, std::size_t i, int k0, int end, PairLanes& p) {
+  for (int l = 0; l < lanes; ++l) {
+    const int k = k0 + l;
+    const bool live = k < end;
+    const std::size_t kk = static_cast<std::size_t>(live ? k : 0);
+    p.j[l] = live ? static_cast<std::size_t>(b.pairs.j[kk]) : i;
+    p.op[l] = with_mirrors && live ? b.pairs.op[kk] : 0;
+    p.t[l] = live ? b.pair_t[kk] : 0.0;
+    p.w[l] = with_stabilisers && live ? static_cast<double>(b.pair_hg[kk]) : 0.0;
+    p.dw[l] = with_stabilisers && live ? static_cast<double>(b.pair_visc[kk]) : 0.0;
+  }
+}
+
+// F and Fdot of particle i from the current positions and velocities:
+// F_i = N_i + A_i B_i^T, Fdot_i = Adot_i B_i^T with
+// A_i = sum_j (op(x_j) - x_i) (x) V_j g_ij, Adot_i = sum_j (S v_j - v_i) (x) V_j g_ij
+// (V_j gc_ij = B_i V_j g_ij, so the correction leaves the pair loop).
+template <bool with_mirrors>
+SPLAT_TARGET_CLONES void deformation(const SphBody& b, const NodeSet& nodes, const Mirrors& m,
+                                     std::size_t i, Mat3& F, Mat3& Fdot) {
+  const std::size_t base = b.node_begin;
+  const double* __restrict X = b.X.data()->data();
+  const double* __restrict x = nodes.x[base].data();
+  const double* __restrict v = nodes.v[base].data();
+  vd Xi[3], xi[3], vi[3];
+  for (int a = 0; a < 3; ++a) {
+    broadcast(Xi[a], X[3 * i + a]);
+    broadcast(xi[a], x[3 * i + a]);
+    broadcast(vi[a], v[3 * i + a]);
+  }
+  // The first chunk (padding only if the list is empty) sets the sums: no
+  // zeroed accumulators in memory.
+  vd A[3][3], Adot[3][3];
+  const int begin = b.pairs.offsets[i], end = b.pairs.offsets[i + 1];
+  for (int k0 = begin; k0 == begin || k0 < end; k0 += lanes) {
+    PairLanes p;
+    load_lanes<with_mirrors, false>(b, i, k0, end, p);
+    const vd t = SPLAT_LANES(p.t);
+    vd g[3], dx[3], dv[3];
+    for (int a = 0; a < 3; ++a) {
+      vd Xj, xj, vj;
+      gather(Xj, X, p.j, 3, static_cast<std::size_t>(a));
+      gather(xj, x, p.j, 3, static_cast<std::size_t>(a));
+      gather(vj, v, p.j, 3, static_cast<std::size_t>(a));
+      if constexpr (with_mirrors) {
+        double sg_l[lanes], sh_l[lanes];
+        for (int l = 0; l < lanes; ++l) {
+          sg_l[l] = m.sign[p.op[l]][a], sh_l[l] = m.shift[p.op[l]][a];
+        }
+        const vd sg = SPLAT_LANES(sg_l), sh = SPLAT_LANES(sh_l);
+        Xj = sg * Xj + sh;
+        xj = sg * xj + sh;
+        vj = sg * vj;
+      }
+      g[a] = t * (Xj - Xi[a]);  // V_j g_ij
+      dx[a] = xj - xi[a];
+      dv[a] = vj - vi[a];
+    }
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        if (k0 == begin) {
+          A[r][c] = dx[r] * g[c];
+          Adot[r][c] = dv[r] * g[c];
+        } else {
+          A[r][c] += dx[r] * g[c];
+          Adot[r][c] += dv[r] * g[c];
+        }
+      }
+    }
+  }
+  // Lane sums four at a time: A(r, c) = sums[(3 r + c) / 4][(3 r + c) % 4].
+  const vd zero = {};
+  vd sums[5];
+  lane_sums4(sums[0], A[0][0], A[0][1], A[0][2], A[1][0]);
+  lane_sums4(sums[1], A[1][1], A[1][2], A[2][0], A[2][1]);
+  lane_sums4(sums[2], A[2][2], Adot[0][0], Adot[0][1], Adot[0][2]);
+  lane_sums4(sums[3], Adot[1][0], Adot[1][1], Adot[1][2], Adot[2][0]);
+  lane_sums4(sums[4], Adot[2][1], Adot[2][2], zero, zero);
+  Mat3 As, Adots;
+  for (int e = 0; e < 9; ++e) {
+    As(e / 3, e % 3) = sums[e / 4][e % 4];
+    Adots(e / 3, e % 3) = sums[(e + 9) / 4][(e + 9) % 4];
+  }
+  F = b.null_projector[i];
+  F.noalias() += As * b.B[i].transpose();
+  Fdot.noalias() = Adots * b.B[i].transpose();
+}
+
 struct PairConstants {
   double alpha_c;  // Monaghan alpha times the wave speed, m/s
   double beta;     // Monaghan beta, -
@@ -136,15 +306,10 @@ struct PairSums {
   double max_mu;                // largest approach mu_ij, m/s
 };
 
-// y = M x for a column-major 3x3 matrix M.
-inline void mat_vec(const double* __restrict M, const double x[3], double y[3]) {
-  for (int r = 0; r < 3; ++r) y[r] = M[r] * x[0] + M[3 + r] * x[1] + M[6 + r] * x[2];
-}
-
 // Stress, viscosity and hourglass forces on particle i (the formulas of the
-// header), in plain scalar arithmetic without branches in the pair loop:
-// inactive neighbours and coincident pairs are masked (inv_r = 0), the
-// viscosity of receding pairs by mu = 0.
+// header), without branches in the pair loop: inactive neighbours and
+// coincident pairs are masked (inv_r = 0), the viscosity of receding pairs by
+// mu = 0.
 template <bool with_mirrors>
 SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes, const Mirrors& m,
                                          const PairConstants& pc, std::size_t i) {
@@ -152,95 +317,154 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
   const double* __restrict X = b.X.data()->data();
   const double* __restrict x = nodes.x[base].data();
   const double* __restrict v = nodes.v[base].data();
-  const double* __restrict mass = nodes.mass.data() + base;
   const double* __restrict PB = b.PB.data()->data();
   const double* __restrict Fm = b.F.data()->data();
   const double* __restrict h = b.h.data();
   const double* __restrict rho = b.rho.data();
   const double* __restrict E_hg = b.E_hg.data();
   const std::uint8_t* __restrict active = b.active.data();
-  const int* __restrict pj = b.pairs.j.data();
-  const std::uint8_t* __restrict pop = b.pairs.op.data();
-  const double* __restrict pt = b.pair_t.data();
-  const float* __restrict pw = b.pair_w.data();
-  const float* __restrict pdw = b.pair_dw.data();
   const double* Fi = Fm + 9 * i;
-  double xi[3], vi[3], Xi[3];
+  vd Xi[3], xi[3], vi[3];
   for (int a = 0; a < 3; ++a) {
-    xi[a] = x[3 * i + a], vi[a] = v[3 * i + a], Xi[a] = X[3 * i + a];
+    broadcast(Xi[a], X[3 * i + a]);
+    broadcast(xi[a], x[3 * i + a]);
+    broadcast(vi[a], v[3 * i + a]);
   }
-  const double mi = mass[i], Vi = b.volume_ref[i], rho_i = rho[i], E_i = E_hg[i], h_i = h[i];
+  const double Vi = b.volume_ref[i];
+  vd h_i, rho_i, E_i, zero = {}, inf;
+  broadcast(h_i, h[i]);
+  broadcast(rho_i, rho[i]);
+  broadcast(E_i, E_hg[i]);
+  broadcast(inf, infinity);
+  const double mi = nodes.mass[base + i];
   // a = sum_j V_j g_ij, fp = sum_j S P_j B_j S V_j g_ij, then
   // f_stress = V_i (P_i B_i a + fp).
-  double a0 = 0, a1 = 0, a2 = 0, fp0 = 0, fp1 = 0, fp2 = 0;
-  double fv0 = 0, fv1 = 0, fv2 = 0, fh0 = 0, fh1 = 0, fh2 = 0;
-  double r_sq_min = infinity, max_mu = 0.0;
+  vd a_sum[3] = {}, fp[3] = {}, fv[3] = {}, fh[3] = {};
+  vd r_sq_min = inf, max_mu = {};
+  const double hg_scale = pc.c_hg * Vi;
   const int begin = b.pairs.offsets[i], end = b.pairs.offsets[i + 1];
-  for (int k = begin; k < end; ++k) {
-    const std::size_t j = static_cast<std::size_t>(pj[k]);
-    const int op = with_mirrors ? pop[k] : 0;
-    const double* sg = m.sign[op];
-    const double* sh = m.shift[op];
-    double dX[3], g[3], Sg[3], Sd[3], xij[3], vij[3];
+  for (int k0 = begin; k0 < end; k0 += lanes) {
+    PairLanes p;
+    load_lanes<with_mirrors, true>(b, i, k0, end, p);
+    const vd t = SPLAT_LANES(p.t), w = SPLAT_LANES(p.w), dw = SPLAT_LANES(p.dw);
+    double sg_l[3][lanes], sh_l[3][lanes];
+    for (int a = 0; a < 3; ++a) {
+      for (int l = 0; l < lanes; ++l) {
+        sg_l[a][l] = m.sign[p.op[l]][a], sh_l[a][l] = m.shift[p.op[l]][a];
+      }
+    }
+    const vd sg[3] = {SPLAT_LANES(sg_l[0]), SPLAT_LANES(sg_l[1]), SPLAT_LANES(sg_l[2])};
+    vd dX[3], g[3], Sg[3], Sd[3], xij[3], vij[3];
     for (int a = 0; a < 3; ++a) {
       // op(X_j) - X_i, recomputed (storing it cost 24 B per pair).
-      dX[a] = (with_mirrors ? sg[a] * X[3 * j + a] + sh[a] : X[3 * j + a]) - Xi[a];
-      g[a] = pt[k] * dX[a];  // V_j g_ij
-      Sg[a] = with_mirrors ? sg[a] * g[a] : g[a];
-      Sd[a] = with_mirrors ? sg[a] * dX[a] : dX[a];
-      xij[a] = (with_mirrors ? sg[a] * x[3 * j + a] + sh[a] : x[3 * j + a]) - xi[a];
-      vij[a] = (with_mirrors ? sg[a] * v[3 * j + a] : v[3 * j + a]) - vi[a];
+      vd Xj, xj, vj;
+      gather(Xj, X, p.j, 3, static_cast<std::size_t>(a));
+      gather(xj, x, p.j, 3, static_cast<std::size_t>(a));
+      gather(vj, v, p.j, 3, static_cast<std::size_t>(a));
+      if constexpr (with_mirrors) {
+        const vd sh = SPLAT_LANES(sh_l[a]);
+        Xj = sg[a] * Xj + sh;
+        xj = sg[a] * xj + sh;
+        vj = sg[a] * vj;
+      }
+      dX[a] = Xj - Xi[a];
+      g[a] = t * dX[a];  // V_j g_ij
+      if constexpr (with_mirrors) {
+        Sg[a] = sg[a] * g[a];
+        Sd[a] = sg[a] * dX[a];
+      } else {
+        Sg[a] = g[a];
+        Sd[a] = dX[a];
+      }
+      xij[a] = xj - xi[a];
+      vij[a] = vj - vi[a];
     }
-    double pg[3], Fd[3], Fid[3];
-    mat_vec(PB + 9 * j, Sg, pg);
-    mat_vec(Fm + 9 * j, Sd, Fd);  // S F_j S dX = S (F_j (S dX))
-    mat_vec(Fi, dX, Fid);
-    a0 += g[0], a1 += g[1], a2 += g[2];
-    if constexpr (with_mirrors) {
-      fp0 += sg[0] * pg[0], fp1 += sg[1] * pg[1], fp2 += sg[2] * pg[2];
-    } else {
-      fp0 += pg[0], fp1 += pg[1], fp2 += pg[2];
+    vd pg[3], Fd[3], Fid[3];
+    for (int r = 0; r < 3; ++r) {
+      const std::size_t ur = static_cast<std::size_t>(r);
+      vd c0, c1, c2;
+      gather(c0, PB, p.j, 9, ur);
+      gather(c1, PB, p.j, 9, 3 + ur);
+      gather(c2, PB, p.j, 9, 6 + ur);
+      pg[r] = c0 * Sg[0] + c1 * Sg[1] + c2 * Sg[2];
+      gather(c0, Fm, p.j, 9, ur);
+      gather(c1, Fm, p.j, 9, 3 + ur);
+      gather(c2, Fm, p.j, 9, 6 + ur);
+      Fd[r] = c0 * Sd[0] + c1 * Sd[1] + c2 * Sd[2];  // S F_j S dX = S (F_j (S dX))
+      Fid[r] = Fi[r] * dX[0] + Fi[3 + r] * dX[1] + Fi[6 + r] * dX[2];
+    }
+    for (int a = 0; a < 3; ++a) {
+      a_sum[a] += g[a];
+      if constexpr (with_mirrors) {
+        fp[a] += sg[a] * pg[a];
+      } else {
+        fp[a] += pg[a];
+      }
     }
 
-    const double r_sq = xij[0] * xij[0] + xij[1] * xij[1] + xij[2] * xij[2];
-    const bool valid = (active[j] != 0) & (r_sq > 0.0);
-    const double inv_r_any = 1.0 / std::sqrt(r_sq);  // computed always: no branch
-    const double inv_r = valid ? inv_r_any : 0.0;
-    r_sq_min = std::min(r_sq_min, valid ? r_sq : infinity);
+    const vd r_sq = xij[0] * xij[0] + xij[1] * xij[1] + xij[2] * xij[2];
+    static_assert(lanes == 4);
+    const vmask act = {active[p.j[0]] != 0 ? -1L : 0L, active[p.j[1]] != 0 ? -1L : 0L,
+                       active[p.j[2]] != 0 ? -1L : 0L, active[p.j[3]] != 0 ? -1L : 0L};
+    const vmask valid = act & (r_sq > zero);
+    vd r;
+    sqrt_lanes(r, r_sq);
+    const vd inv_r = valid ? 1.0 / r : zero;
+    const vd r_sq_valid = valid ? r_sq : inf;
+    r_sq_min = r_sq_valid < r_sq_min ? r_sq_valid : r_sq_min;
 
     // Monaghan viscosity between approaching particles (vx < 0), with one
     // division: q = 1 / (d1 d2), mu = h vx / d1, Pi = (...) / d2.
-    const double vx = std::min(vij[0] * xij[0] + vij[1] * xij[1] + vij[2] * xij[2], 0.0);
-    const double hij = 0.5 * (h_i + h[j]);
-    const double d1 = r_sq + 0.01 * hij * hij;
-    const double d2 = 0.5 * (rho_i + rho[j]);
-    const double q = 1.0 / (d1 * d2);
-    const double mu = hij * vx * d2 * q;
-    const double Pi = (-pc.alpha_c * mu + pc.beta * mu * mu) * d1 * q;
-    max_mu = std::max(max_mu, valid ? -mu : 0.0);
-    const double central = mi * mass[j] * Pi * static_cast<double>(pdw[k]) * inv_r;
+    const vd vx_any = vij[0] * xij[0] + vij[1] * xij[1] + vij[2] * xij[2];
+    const vd vx = zero < vx_any ? zero : vx_any;
+    vd h_j, rho_j, E_j;
+    gather(h_j, h, p.j, 1, 0);
+    gather(rho_j, rho, p.j, 1, 0);
+    gather(E_j, E_hg, p.j, 1, 0);
+    const vd hij = 0.5 * (h_i + h_j);
+    const vd d1 = r_sq + 0.01 * hij * hij;
+    const vd d2 = 0.5 * (rho_i + rho_j);
+    const vd q = 1.0 / (d1 * d2);
+    const vd mu = hij * vx * d2 * q;
+    const vd Pi = (-pc.alpha_c * mu + pc.beta * mu * mu) * d1 * q;
+    const vd approach = valid ? -mu : zero;
+    max_mu = max_mu < approach ? approach : max_mu;
+    const vd central = mi * dw * Pi * inv_r;
 
     // Ganzenmueller hourglass control: eps = (F_i dX + S F_j S dX) / 2 - x_ij.
-    double delta = 0.0;
+    vd delta = {};
     for (int a = 0; a < 3; ++a) {
-      const double Fj_dX = with_mirrors ? sg[a] * Fd[a] : Fd[a];
+      vd Fj_dX = Fd[a];
+      if constexpr (with_mirrors) Fj_dX = sg[a] * Fd[a];
       delta += (0.5 * (Fid[a] + Fj_dX) - xij[a]) * xij[a];
     }
-    delta *= inv_r;
-    const double E_ij = 0.5 * (E_i + E_hg[j]);
-    const double dX_sq = dX[0] * dX[0] + dX[1] * dX[1] + dX[2] * dX[2];
-    const double hg = pc.c_hg * E_ij * Vi * static_cast<double>(pw[k]) * delta / dX_sq * inv_r;
-    fv0 += central * xij[0], fv1 += central * xij[1], fv2 += central * xij[2];
-    fh0 -= hg * xij[0], fh1 -= hg * xij[1], fh2 -= hg * xij[2];
+    const vd E_ij = 0.5 * (E_i + E_j);
+    const vd hg = hg_scale * E_ij * w * delta * inv_r * inv_r;
+    for (int a = 0; a < 3; ++a) {
+      fv[a] += central * xij[a];
+      fh[a] -= hg * xij[a];
+    }
   }
+  vd sums[3];
+  lane_sums4(sums[0], a_sum[0], a_sum[1], a_sum[2], fp[0]);
+  lane_sums4(sums[1], fp[1], fp[2], fv[0], fv[1]);
+  lane_sums4(sums[2], fv[2], fh[0], fh[1], fh[2]);
   PairSums out;
-  out.f_stress = Vi * (b.PB[i] * Vec3(a0, a1, a2) + Vec3(fp0, fp1, fp2));
-  out.f_visc = Vec3(fv0, fv1, fv2);
-  out.f_hg = Vec3(fh0, fh1, fh2);
-  out.r_min = std::sqrt(r_sq_min);
-  out.max_mu = max_mu;
+  const Vec3 a_i(sums[0][0], sums[0][1], sums[0][2]);
+  const Vec3 fp_i(sums[0][3], sums[1][0], sums[1][1]);
+  out.f_stress = Vi * (b.PB[i] * a_i + fp_i);
+  out.f_visc = Vec3(sums[1][2], sums[1][3], sums[2][0]);
+  out.f_hg = Vec3(sums[2][1], sums[2][2], sums[2][3]);
+  double r_sq = r_sq_min[0], mu_max = max_mu[0];
+  for (int l = 1; l < lanes; ++l) {
+    r_sq = std::min(r_sq, r_sq_min[l]);
+    mu_max = std::max(mu_max, max_mu[l]);
+  }
+  out.r_min = std::sqrt(r_sq);
+  out.max_mu = mu_max;
   return out;
 }
+#pragma GCC diagnostic pop
 }  // namespace
 
 void sph_build_reference(SphBody& b) {
@@ -248,8 +472,8 @@ void sph_build_reference(SphBody& b) {
   b.pairs = find_neighbours(b.X, b.h, b.planes, b.active);
   const std::size_t np = b.pairs.num_pairs();
   b.pair_t.assign(np, 0.0);
-  b.pair_w.assign(np, 0.0f);
-  b.pair_dw.assign(np, 0.0f);
+  b.pair_hg.assign(np, 0.0f);
+  b.pair_visc.assign(np, 0.0f);
   b.null_projector.assign(n, Mat3::Zero());
   b.B.assign(n, Mat3::Zero());
 
@@ -266,8 +490,10 @@ void sph_build_reference(SphBody& b) {
       const Vec3 dX = mirror_point(b.planes, op, b.X[j]) - b.X[i];
       const double r0 = dX.norm();
       const KernelValue kv = kernel(b.settings.kernel, r0, 0.5 * (b.h[i] + b.h[j]));
-      b.pair_w[kk] = static_cast<float>(b.volume_ref[j] * kv.w);
-      b.pair_dw[kk] = static_cast<float>(kv.dw_dr);
+      // Folded per-pair constants of the stabilising terms (fixed until the
+      // next reference update; particle masses never change).
+      b.pair_hg[kk] = static_cast<float>(r0 > 0.0 ? b.volume_ref[j] * kv.w / (r0 * r0) : 0.0);
+      b.pair_visc[kk] = static_cast<float>(b.material.density * b.volume0[j] * kv.dw_dr);
       const double s = -kv.dw_dr / r0;  // g_ij = s dX (uncorrected)
       b.pair_t[kk] = b.volume_ref[j] * s;
       C.noalias() += b.volume_ref[j] * dX * (s * dX).transpose();
@@ -385,10 +611,15 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
 
   // Deformation from the reference; update the reference if due.
   const bool mirrors = !b.planes.empty();
+  const Mirrors mirror_table(b.planes);
   const auto compute_F = [&]() {
     for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
       if (!b.active[i]) return;
-      deformation(b, nodes, mirrors, i, b.F[i], b.Fdot[i]);
+      if (mirrors) {
+        deformation<true>(b, nodes, mirror_table, i, b.F[i], b.Fdot[i]);
+      } else {
+        deformation<false>(b, nodes, mirror_table, i, b.F[i], b.Fdot[i]);
+      }
       s.max_deformation = std::max(s.max_deformation, (b.F[i] - Mat3::Identity()).norm());
     });
     double m = 0.0;
@@ -412,34 +643,62 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   const bool can_fail =
       b.settings.deactivate_failed && b.switches.damage && dm.initiation != DamageInitiation::none;
   std::vector<std::uint8_t> failed(n, 0);
-  for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
-    if (!b.active[i]) {
-      b.PB[i].setZero();
-      return;
+  // Per block: kinematics of each stressed particle, ONE batched material
+  // update of the block's particles, then P B and the per-particle quantities
+  // the pairs read: current density and the hourglass modulus ((1 - D) E, or
+  // the flow stress once plastic).
+  const double E = mat.elastic.E;
+  b.rho.resize(n);
+  b.E_hg.resize(n);
+  for_block_ranges(n, blocks, [&](std::size_t first, std::size_t last, BlockSums& s) {
+    int index[block_size];
+    Mat3 d_eps[block_size];
+    double J_new[block_size], length[block_size], det[block_size];
+    PointUpdateResult out[block_size];
+    std::size_t count = 0;
+    for (std::size_t i = first; i < last; ++i) {
+      const Mat3& F = b.F[i];
+      const double detF = F.determinant();
+      det[i - first] = detF;
+      if (!b.active[i]) continue;
+      if (!(detF > 0.0)) {
+        ++s.inverted;
+        continue;
+      }
+      if (dt > 0.0) {
+        const Mat3 F_mid = F - 0.5 * dt * b.Fdot[i];
+        const Mat3 L = b.Fdot[i] * F_mid.inverse();
+        const Mat3 D = 0.5 * (L + L.transpose());
+        const Mat3 W = 0.5 * (L - L.transpose());
+        PointState& st = b.state[i];
+        st.s = rotate_symmetric(hughes_winget_rotation(W, dt), st.s);
+        index[count] = static_cast<int>(i);
+        d_eps[count] = dt * D;
+        J_new[count] = b.J_ref[i] * detF;
+        length[count] = b.spacing * std::cbrt(J_new[count]);
+        ++count;
+      }
     }
-    const Mat3& F = b.F[i];
-    const double detF = F.determinant();
-    if (!(detF > 0.0)) {
-      ++s.inverted;
-      b.PB[i].setZero();
-      return;
+    update_points_standin(mat, b.constants, b.switches, b.state.data(), index, count, d_eps, J_new,
+                          dt, length, out);
+    for (std::size_t k = 0; k < count; ++k) {
+      s.max_iterations = std::max(s.max_iterations, out[k].iterations);
+      s.failed = s.failed || !out[k].converged;
+      const std::size_t i = static_cast<std::size_t>(index[k]);
+      if (can_fail && b.state[i].D >= dm.D_max - 1e-12) failed[i] = 1;
     }
-    PointState& st = b.state[i];
-    if (dt > 0.0) {
-      const Mat3 F_mid = F - 0.5 * dt * b.Fdot[i];
-      const Mat3 L = b.Fdot[i] * F_mid.inverse();
-      const Mat3 D = 0.5 * (L + L.transpose());
-      const Mat3 W = 0.5 * (L - L.transpose());
-      st.s = rotate_symmetric(hughes_winget_rotation(W, dt), st.s);
-      const double J = b.J_ref[i] * detF;
-      const double length = b.spacing * std::cbrt(J);
-      const PointUpdateResult r =
-          update_point(mat, b.constants, b.switches, st, dt * D, J, dt, length);
-      s.max_iterations = std::max(s.max_iterations, r.iterations);
-      s.failed = s.failed || !r.converged;
-      if (can_fail && st.D >= dm.D_max - 1e-12) failed[i] = 1;
+    for (std::size_t i = first; i < last; ++i) {
+      const double detF = det[i - first];
+      const PointState& st = b.state[i];
+      b.rho[i] = mat.density / (b.J_ref[i] * std::max(detF, 1e-12));
+      b.E_hg[i] = st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
+      if (b.active[i] && detF > 0.0) {
+        // det(F) F^-T is the cofactor matrix of F.
+        b.PB[i].noalias() = st.cauchy() * (cofactor(b.F[i]) * b.B[i]);
+      } else {
+        b.PB[i].setZero();
+      }
     }
-    b.PB[i].noalias() = (detF * st.cauchy()) * (F.inverse().transpose() * b.B[i]);
   });
   for (const BlockSums& s : blocks) {
     result.max_return_iterations = std::max(result.max_return_iterations, s.max_iterations);
@@ -460,23 +719,14 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   const double c = b.constants.wave_speed;
   const double alpha = b.settings.visc_linear, beta = b.settings.visc_quadratic;
   const double c_hg = b.settings.hourglass_coefficient;
-  const double E = mat.elastic.E;
-  // Per-particle quantities the pairs read: current density and the
-  // hourglass modulus ((1 - D) E, or the flow stress once plastic).
-  b.rho.resize(n);
-  b.E_hg.resize(n);
-  b.f_visc.assign(n, Vec3::Zero());
-  b.f_hg.assign(n, Vec3::Zero());
-  for_blocks(n, blocks, [&](std::size_t i, BlockSums&) {
-    const PointState& st = b.state[i];
-    b.rho[i] = mat.density / (b.J_ref[i] * std::max(b.F[i].determinant(), 1e-12));
-    b.E_hg[i] = st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
-  });
+  b.f_visc.resize(n);
+  b.f_hg.resize(n);
   const PairConstants pc{alpha * c, beta, c_hg};
-  const Mirrors mirror_table(b.planes);
   for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
     if (!b.active[i]) {
       b.dt_bound[i] = infinity;
+      b.f_visc[i].setZero();
+      b.f_hg[i].setZero();
       return;
     }
     const std::size_t gi = b.node_begin + i;
@@ -512,12 +762,51 @@ Vec3 sph_pair_gradient(const SphBody& b, std::size_t k) {
   return b.B[i] * (b.pair_t[k] * dX);
 }
 
-double sph_internal_energy(const SphBody& b) {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    if (b.active[i]) sum += b.volume0[i] * b.state[i].e;
+namespace {
+
+// Sums over the particles of term(i) (a Vec2), in fixed blocks combined in
+// block order: the same bits for any thread count.
+template <class Term>
+Vec2 block_sum(std::size_t n, Term&& term) {
+  const long long nb = static_cast<long long>(num_blocks(n));
+  std::vector<Vec2> part(static_cast<std::size_t>(nb), Vec2::Zero());
+  SPLAT_OMP(omp parallel for schedule(dynamic) if (static_cast<long long>(n) >= min_parallel_particles))
+  for (long long bk = 0; bk < nb; ++bk) {
+    const std::size_t k = static_cast<std::size_t>(bk);
+    const std::size_t end = std::min(n, (k + 1) * block_size);
+    Vec2 sum = Vec2::Zero();
+    for (std::size_t i = k * block_size; i < end; ++i) sum += term(i);
+    part[k] = sum;
   }
-  return sum;
+  Vec2 total = Vec2::Zero();
+  for (const Vec2& p : part) total += p;
+  return total;
+}
+
+}  // namespace
+
+double sph_internal_energy(const SphBody& b) {
+  return sph_energy_sums(b).internal;
+}
+
+SphEnergySums sph_energy_sums(const SphBody& b) {
+  const Vec2 sum = block_sum(b.size(), [&](std::size_t i) {
+    return b.active[i] ? Vec2(b.volume0[i] * b.state[i].e, b.volume0[i] * b.state[i].plastic_work)
+                       : Vec2::Zero();
+  });
+  return {sum.x(), sum.y()};
+}
+
+SphEnergySums sph_stabiliser_power(const SphBody& b, const NodeSet& nodes) {
+  SphEnergySums out;
+  if (b.f_hg.size() != b.size()) return out;  // before the first force evaluation
+  const Vec2 sum = block_sum(b.size(), [&](std::size_t i) {
+    const Vec3& v = nodes.v[b.node_begin + i];
+    return Vec2(-b.f_visc[i].dot(v), -b.f_hg[i].dot(v));
+  });
+  out.viscosity = sum.x();
+  out.hourglass = sum.y();
+  return out;
 }
 
 }  // namespace splat

@@ -119,8 +119,8 @@ struct SphBody {
   std::vector<double> h;             // smoothing lengths, m
   NeighbourList pairs;               // reference neighbours (local indices)
   std::vector<double> pair_t;        // t_ij = V_j s_ij = -V_j W'(r0, h_ij) / r0, 1/m^2
-  std::vector<float> pair_w;         // V_j W(r0, h_ij), - (float: read by the
-  std::vector<float> pair_dw;        //   stabilising terms only), W'(r0, h_ij), 1/m^4
+  std::vector<float> pair_hg;        // V_j W(r0, h_ij) / r0^2, 1/m^2 (float: read by
+  std::vector<float> pair_visc;      //   the stabilising terms only), m_j W'(r0, h_ij), kg/m^4
   std::vector<Mat3> null_projector;  // I - C^+ C (zero unless C_i is singular)
   std::vector<Mat3> B;               // kernel correction C_i^-1 (bounded), -
   long long reference_updates = 0;   // count of updates so far
@@ -182,6 +182,20 @@ void sph_update_reference(SphBody& body, const NodeSet& nodes);
 
 // Sum over active particles of V0 e, J.
 double sph_internal_energy(const SphBody& body);
+
+// Energy sums of one body, J (or powers, W), computed in parallel over fixed
+// blocks of particles: the same bits for any thread count.
+struct SphEnergySums {
+  double internal = 0.0;   // sum over active particles of V0 e, J
+  double plastic = 0.0;    // sum over active particles of V0 w_p, J
+  double viscosity = 0.0;  // -sum f_visc . v over all particles, W
+  double hourglass = 0.0;  // -sum f_hg . v over all particles, W
+};
+// internal and plastic.
+SphEnergySums sph_energy_sums(const SphBody& body);
+// viscosity and hourglass: the power of the last call's stabilising forces at
+// the current velocities (zero before the first call).
+SphEnergySums sph_stabiliser_power(const SphBody& body, const NodeSet& nodes);
 
 // Recomputes the reference neighbourhood and kernel correction from body.X,
 // body.h, body.volume_ref (used by make_sph_body and sph_update_reference).
