@@ -27,43 +27,23 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/common/simd_math.hpp"
 #include "solver/material/material.hpp"
-
-// Vector values pass only between always_inline functions here.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace splat {
 
 inline constexpr double min_failure_strain = 1e-6;  // -
 
-// Written once for double and for SIMD lanes (V a vector of states):
-// point_update_batch.cpp gives the same bits as the scalar update.
-template <class V>
-[[gnu::always_inline]] inline V jc_failure_strain_t(const JohnsonCookFailureParams& d,
-                                                    const JohnsonCookParams& jc, bool rate_term,
-                                                    bool thermal_term, V triaxiality, V eps_dot_p,
-                                                    V T) {
-  V eps_f = d.D1 + d.D2 * simd::exp(d.D3 * triaxiality);
-  if (rate_term) {
-    const V rate = 1.0 + d.D4 * simd::log(eps_dot_p / jc.eps_dot_0);
-    eps_f = simd::select<V>(eps_dot_p > jc.eps_dot_0, eps_f * rate, eps_f);
-  }
-  if (thermal_term) {
-    // std::clamp(t, 0, 1): t < 0 ? 0 : (1 < t ? 1 : t)
-    const V t = (T - jc.T_ref) / (jc.T_melt - jc.T_ref);
-    const V t_star = simd::select<V>(t < 0.0, simd::broadcast<V>(0.0),
-                                     simd::select<V>(1.0 < t, simd::broadcast<V>(1.0), t));
-    eps_f = eps_f * (1.0 + d.D5 * t_star);
-  }
-  return simd::max<V>(eps_f, simd::broadcast<V>(min_failure_strain));
-}
-
 inline double jc_failure_strain(const JohnsonCookFailureParams& d, const JohnsonCookParams& jc,
                                 bool rate_term, bool thermal_term, double triaxiality,
                                 double eps_dot_p, double T) {
-  return jc_failure_strain_t<double>(d, jc, rate_term, thermal_term, triaxiality, eps_dot_p, T);
+  double eps_f = d.D1 + d.D2 * std::exp(d.D3 * triaxiality);
+  if (rate_term && eps_dot_p > jc.eps_dot_0)
+    eps_f *= 1.0 + d.D4 * std::log(eps_dot_p / jc.eps_dot_0);
+  if (thermal_term) {
+    const double t_star = std::clamp((T - jc.T_ref) / (jc.T_melt - jc.T_ref), 0.0, 1.0);
+    eps_f *= 1.0 + d.D5 * t_star;
+  }
+  return std::max(eps_f, min_failure_strain);
 }
 
 inline double shear_failure_strain(const ShearFailureParams& sf, double theta, double eps_dot_p) {
@@ -93,5 +73,3 @@ inline double initial_random_damage(unsigned long long seed, unsigned long long 
 }
 
 }  // namespace splat
-
-#pragma GCC diagnostic pop

@@ -11,7 +11,7 @@ FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwit
   double hard = jc.A;
   double d_hard = 0.0;
   if (eps_p > 0.0) {
-    const double pw = simd::exp(jc.n * simd::log(eps_p));
+    const double pw = std::pow(eps_p, jc.n);
     hard += jc.B * pw;
     d_hard = jc.B * jc.n * pw / eps_p;
   } else if (jc.n < 1.0 && jc.B > 0.0) {
@@ -36,7 +36,7 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
   auto set_terms = [&](double dp) {
     r.hard = jc_hardening(jc, eps_p + dp);
     const double x = dp * inv_ref;
-    r.rate = rate_on && x > 1.0 ? 1.0 + jc.C * simd::log(x) : 1.0;
+    r.rate = rate_on && x > 1.0 ? 1.0 + jc.C * std::log(x) : 1.0;
   };
   if (scale <= 0.0) {  // molten or fully damaged: no strength, return to the axis
     r.delta_eps_p = q_trial / three_g;
@@ -68,8 +68,8 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     const double ep = eps_p + dp;
     double hard = jc.A, d_hard = 0.0, dd_hard = 0.0;
     if (ep > 0.0) {
-      const double pw = simd::exp(jc.n * simd::log(ep));  // ep^n: exp and log cost less than pow
-      const double inv_ep = 1.0 / ep;                     // one division, off the exp-log path
+      const double pw = std::exp(jc.n * std::log(ep));  // ep^n: exp and log cost less than pow
+      const double inv_ep = 1.0 / ep;                   // one division, off the exp-log path
       hard += jc.B * pw;
       d_hard = jc.B * jc.n * pw * inv_ep;
       dd_hard = (jc.n - 1.0) * d_hard * inv_ep;
@@ -77,7 +77,7 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     double rate = 1.0, d_rate = 0.0, dd_rate = 0.0;
     const double x = dp * inv_ref;
     if (rate_on && x > 1.0) {
-      rate += jc.C * simd::log(x);
+      rate += jc.C * std::log(x);
       const double inv_dp = 1.0 / dp;
       d_rate = jc.C * inv_dp;
       dd_rate = -d_rate * inv_dp;

@@ -10,12 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/common/simd_math.hpp"
 #include "solver/material/material.hpp"
-
-// Vector values pass only between always_inline functions here.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace splat {
 
@@ -25,30 +20,21 @@ struct FlowStress {
   double d_rate;   // d sigma_y / d eps_dot_p, Pa s
 };
 
-// 1 - T*^m, written once for double and for SIMD lanes (T a vector of
-// temperatures): point_update_batch.cpp gives the same bits as this.
-template <class V>
-[[gnu::always_inline]] inline V jc_thermal_factor_t(const JohnsonCookParams& jc, bool enabled,
-                                                    V T) {
-  if (!enabled) return simd::broadcast<V>(1.0);
-  const V t_star = (T - jc.T_ref) / (jc.T_melt - jc.T_ref);
-  // t_star^m: exp and log cost less than pow
-  const V soft = 1.0 - simd::exp(jc.m * simd::log(t_star));
-  return simd::select<V>(t_star <= 0.0, simd::broadcast<V>(1.0),
-                         simd::select<V>(t_star >= 1.0, simd::broadcast<V>(0.0), soft));
-}
-
 inline double jc_thermal_factor(const JohnsonCookParams& jc, bool enabled, double T) {
-  return jc_thermal_factor_t<double>(jc, enabled, T);
+  if (!enabled) return 1.0;
+  const double t_star = (T - jc.T_ref) / (jc.T_melt - jc.T_ref);
+  if (t_star <= 0.0) return 1.0;
+  if (t_star >= 1.0) return 0.0;
+  return 1.0 - std::exp(jc.m * std::log(t_star));  // t_star^m: exp and log cost less than pow
 }
 
 inline double jc_rate_factor(const JohnsonCookParams& jc, bool enabled, double eps_dot_p) {
   if (!enabled || eps_dot_p <= jc.eps_dot_0) return 1.0;
-  return 1.0 + jc.C * simd::log(eps_dot_p / jc.eps_dot_0);
+  return 1.0 + jc.C * std::log(eps_dot_p / jc.eps_dot_0);
 }
 
 inline double jc_hardening(const JohnsonCookParams& jc, double eps_p) {
-  return eps_p > 0.0 ? jc.A + jc.B * simd::exp(jc.n * simd::log(eps_p)) : jc.A;
+  return eps_p > 0.0 ? jc.A + jc.B * std::pow(eps_p, jc.n) : jc.A;
 }
 
 // Flow stress and its partial derivatives at (eps_p, eps_dot_p, T).
@@ -87,5 +73,3 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
                                     double scale, double hard0, double dp_guess = 0.0);
 
 }  // namespace splat
-
-#pragma GCC diagnostic pop

@@ -8,7 +8,6 @@
 #include "solver/material/elasticity.hpp"
 #include "solver/material/eos.hpp"
 #include "solver/material/johnson_cook.hpp"
-#include "solver/material/point_update_kernel.hpp"
 
 namespace splat {
 
@@ -59,8 +58,7 @@ void update_damage(const Material& m, const ModelSwitches& sw, PointState& st, d
   const double eps_dot = dp / dt;
   double dp_after_init = 0.0;
   if (st.eps_p_init < 0.0) {
-    // Same operations as the initiation in lanes in update_points.
-    const double q = point_kernel::von_mises9(st.s.data());
+    const double q = von_mises(st.s);
     double eps_f = 0.0;
     if (dm.initiation == DamageInitiation::johnson_cook) {
       const double eta = q > 0.0 ? -st.p / q : 0.0;
@@ -101,44 +99,18 @@ void update_damage(const Material& m, const ModelSwitches& sw, PointState& st, d
 
 }  // namespace
 
-namespace point_kernel {
-
-void finish_plastic_step(const Material& m, const ModelSwitches& sw, PointState& st, double dp,
-                         double dt, double length, double scale, double rate_f, bool heated) {
-  const double D_old = st.D;
-  update_damage(m, sw, st, dp, dt, length);
-  // Temperature or damage moved: the strength at the end state changes.
-  const double end_scale =
-      (heated || st.D != D_old)
-          ? (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T)
-          : scale;
-  st.strength_scale = end_scale;
-  st.sigma_y_static = end_scale * st.hardening;
-  st.sigma_y = st.sigma_y_static * rate_f;
-  st.sigma_y_peak = std::max(st.sigma_y_peak, st.sigma_y);
-  st.sigma_y_static_peak = std::max(st.sigma_y_static_peak, st.sigma_y_static);
-}
-
-}  // namespace point_kernel
-
-// The arithmetic below is mirrored lane by lane in update_points
-// (point_update_batch.cpp); change both together (the batch test compares
-// them bit for bit).
 PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
                                const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
                                double J_new, double dt, double length) {
   PointUpdateResult result;
   const double keep = 1.0 - st.D;
   const double G_d = keep * mc.G;
+  const Mat3 sigma_old = st.cauchy();
   const double J_old = st.J;
-  const double* de = d_eps.data();
 
   // Elastic predictor for the deviator, then radial return.
-  double s[9];
-  point_kernel::elastic_predictor(st.s.data(), de, 2.0 * G_d, s);
-  const double q_trial = point_kernel::von_mises9(s);
-  // Stress power of the start-of-step stress, for the energy update below.
-  const double power_old = point_kernel::stress_power9(st.s.data(), st.p, de);
+  Mat3 s = st.s + 2.0 * G_d * deviator(d_eps);
+  const double q_trial = von_mises(s);
   double dp = 0.0;
   // (1 - D)(1 - T*^m) and A + B eps_p^n at the start of the step, kept in the
   // state by the last plastic step (or initial_point_state).
@@ -151,10 +123,9 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
     result.iterations = rm.iterations;
     result.converged = rm.converged;
     // Radial scaling of the trial deviator onto the yield surface.
-    const double factor = std::max(q_trial - 3.0 * G_d * dp, 0.0) / q_trial;
-    for (double& si : s) si *= factor;
+    s *= std::max(q_trial - 3.0 * G_d * dp, 0.0) / q_trial;
   }
-  st.s = Eigen::Map<const Mat3>(s);
+  st.s = s;
   st.eps_p += dp;
   st.eps_dot_p = dp / dt;
 
@@ -162,9 +133,10 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   // e_new = e_old + J_mid/2 (sigma_old + sigma_new) : d_eps, sigma = s - p I.
   st.J = J_new;
   const double J_mid = 0.5 * (J_old + J_new);
-  const double tr = (de[0] + de[4]) + de[8];
-  const double power_new = point_kernel::sum_products9(s, de);  // s : d_eps (p comes next)
-  const double e_star = st.e + 0.5 * J_mid * (power_old + power_new);
+  const double tr = d_eps.trace();
+  const double e_star =
+      st.e +
+      0.5 * J_mid * ((sigma_old.array() * d_eps.array()).sum() + (s.array() * d_eps.array()).sum());
   const EosSplit eos = eos_split(m.eos, mc.K, mc.rho0, J_new);
   double p = (eos.p_cold + eos.gamma_e * e_star) / (1.0 + 0.5 * eos.gamma_e * J_mid * tr);
   p = apply_tension_damage(p, st.D);
@@ -174,19 +146,28 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   // Adiabatic heating: a fraction chi of the plastic work per unit current
   // volume, sigma_y dp, raises the temperature of mass rho = rho0 / J.
   if (dp > 0.0) {
+    const double rate_f = rm.rate;      // 1 + C ln(eps_dot_p / eps_dot_0) of this increment
     st.hardening = rm.hard;             // A + B eps_p^n at the end of the step
     st.sigma_y = scale * rm.hard_rate;  // flow stress of this increment
     const double w = st.sigma_y * dp;   // plastic work, J/m^3 of current volume
     st.plastic_work += J_new * w;
     const bool heated = sw.adiabatic_heating && w > 0.0;
     if (heated) st.T += mc.chi * w * J_new / (mc.rho0 * mc.c_p);
-    // rm.rate: 1 + C ln(eps_dot_p / eps_dot_0) of this increment
-    point_kernel::finish_plastic_step(m, sw, st, dp, dt, length, scale, rm.rate, heated);
+    const double D_old = st.D;
+    update_damage(m, sw, st, dp, dt, length);
+    // Temperature or damage moved: the strength at the end state changes.
+    const double end_scale =
+        (heated || st.D != D_old)
+            ? (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T)
+            : scale;
+    st.strength_scale = end_scale;
+    st.sigma_y_static = end_scale * st.hardening;
+    st.sigma_y = st.sigma_y_static * rate_f;
   } else {
     st.sigma_y = st.sigma_y_static;  // no plastic rate: no rate hardening
-    st.sigma_y_peak = std::max(st.sigma_y_peak, st.sigma_y);
-    st.sigma_y_static_peak = std::max(st.sigma_y_static_peak, st.sigma_y_static);
   }
+  st.sigma_y_peak = std::max(st.sigma_y_peak, st.sigma_y);
+  st.sigma_y_static_peak = std::max(st.sigma_y_static_peak, st.sigma_y_static);
   return result;
 }
 
