@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <unordered_map>
@@ -202,6 +203,15 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
   std::vector<Vec3> lo(nf), hi(nf);
   std::vector<double> sizes(nf);
   double cell = 0.0;
+  // Only faces whose grown box meets the slave nodes' bounding box can pair
+  // with any of them: the others stay out of the grid (an SPH block's
+  // thousands of particle "faces" far from the ball cost most of the search).
+  Vec3 slave_lo = x[slave.nodes[0]], slave_hi = slave_lo;
+  for (int n : slave.nodes) {
+    slave_lo = slave_lo.cwiseMin(x[n]);
+    slave_hi = slave_hi.cwiseMax(x[n]);
+  }
+  std::vector<std::uint8_t> near(nf, 0);
   const double reach =
       std::max(st.capture_depth, st.search_margin) + 2.0 * st.outside_tolerance + 1e-6;
   for (std::size_t f = 0; f < nf; ++f) {
@@ -217,8 +227,11 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
         reach * std::max(sizes[f], (b - a).maxCoeff()) + 0.5 * sizes[f] * pinball + slave_reach;
     lo[f] = a - Vec3::Constant(grow);
     hi[f] = b + Vec3::Constant(grow);
-    cell = std::max(cell, (hi[f] - lo[f]).maxCoeff());
+    near[f] =
+        (lo[f].array() <= slave_hi.array()).all() && (hi[f].array() >= slave_lo.array()).all();
+    if (near[f]) cell = std::max(cell, (hi[f] - lo[f]).maxCoeff());
   }
+  if (std::none_of(near.begin(), near.end(), [](std::uint8_t b) { return b != 0; })) return out;
   if (!(cell > 0.0) || !std::isfinite(cell)) return find_pairs_all_pairs(master, slave, x, st);
   const bool planar = master.kind == DetectionKind::node_on_segment;
   auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
@@ -229,6 +242,7 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
   std::unordered_map<std::int64_t, std::vector<int>> grid;
   grid.reserve(2 * nf);
   for (std::size_t f = 0; f < nf; ++f) {
+    if (!near[f]) continue;
     const std::int64_t i0 = cell_of(lo[f].x()), i1 = cell_of(hi[f].x());
     const std::int64_t j0 = cell_of(lo[f].y()), j1 = cell_of(hi[f].y());
     const std::int64_t k0 = planar ? 0 : cell_of(lo[f].z()), k1 = planar ? 0 : cell_of(hi[f].z());
