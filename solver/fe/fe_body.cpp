@@ -386,19 +386,6 @@ void quad_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, 
   finish_element(body, e, V, ms, hg_power, sums, erode);
 }
 
-// Stand-in for the batched material update (solver/material/point_update_batch,
-// being written): the same results as update_point for each k on
-// states[index[k]], the signature of the real one.
-[[maybe_unused]] void update_points_standin(const Material& m, const MaterialConstants& mc,
-                                            const ModelSwitches& sw, PointState* states,
-                                            const int* index, std::size_t n, const Mat3* d_eps,
-                                            const double* J_new, double dt, const double* length,
-                                            PointUpdateResult* out) {
-  for (std::size_t k = 0; k < n; ++k) {
-    out[k] = update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k]);
-  }
-}
-
 // Elements per lane group (4 or 8 doubles per vector, simd_lanes.hpp).
 constexpr int lane_width = SPLAT_FE_LANE_WIDTH;
 static_assert(block_size % lane_width == 0);
@@ -501,9 +488,8 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
 template <class Scratch>
 SPLAT_LANE_INLINE void material_block(FeBody& body, double dt, Scratch& s, BlockSums& sums) {
   if (!(dt > 0.0) || s.mat_count == 0) return;
-  update_points_standin(body.material, body.constants, body.switches, body.state.data(),
-                        s.mat_index, static_cast<std::size_t>(s.mat_count), s.d_eps, s.J_new, dt,
-                        s.length, s.mat_out);
+  update_points(body.material, body.constants, body.switches, body.state.data(), s.mat_index,
+                static_cast<std::size_t>(s.mat_count), s.d_eps, s.J_new, dt, s.length, s.mat_out);
   for (int k = 0; k < s.mat_count; ++k) {
     sums.max_iterations = std::max(sums.max_iterations, s.mat_out[k].iterations);
     sums.failed = sums.failed || !s.mat_out[k].converged;

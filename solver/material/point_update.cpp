@@ -171,4 +171,12 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   return result;
 }
 
+void update_points(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
+                   PointState* states, const int* index, std::size_t n, const Mat3* d_eps,
+                   const double* J_new, double dt, const double* length, PointUpdateResult* out) {
+  for (std::size_t k = 0; k < n; ++k) {
+    out[k] = update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k]);
+  }
+}
+
 }  // namespace splat

@@ -4,6 +4,8 @@
 // call it live in the bodies, the time loop above them.
 #pragma once
 
+#include <cstddef>
+
 #include "solver/common/types.hpp"
 #include "solver/material/material.hpp"
 
@@ -73,5 +75,16 @@ struct PointUpdateResult {
 PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
                                const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
                                double J_new, double dt, double length);
+
+// The material update of a block of n points, as the element and particle
+// loops call it (one call per block): states[index[k]] advances as
+// update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k])
+// and out[k] is its result. A point by point loop: a batched version in SIMD
+// lanes, made bit-identical to update_point, was measured at 77 ns per plastic
+// and 26 ns per elastic point against this loop's 80 and 17 (bit identity
+// forced a slower scalar path), so it was not kept.
+void update_points(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
+                   PointState* states, const int* index, std::size_t n, const Mat3* d_eps,
+                   const double* J_new, double dt, const double* length, PointUpdateResult* out);
 
 }  // namespace splat

@@ -76,18 +76,6 @@ void for_block_ranges(std::size_t n, std::vector<BlockSums>& blocks, Body&& body
   }
 }
 
-// Stand-in for the batched material update update_points (solver/material,
-// being written): the same results as update_point on states[index[k]] with
-// d_eps[k], J_new[k], length[k] for k < n, results in out[k].
-static void update_points_standin(const Material& m, const MaterialConstants& mc,
-                                  const ModelSwitches& sw, PointState* states, const int* index,
-                                  std::size_t n, const Mat3* d_eps, const double* J_new, double dt,
-                                  const double* length, PointUpdateResult* out) {
-  for (std::size_t k = 0; k < n; ++k) {
-    out[k] = update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k]);
-  }
-}
-
 // The cofactor matrix det(F) F^-T of F.
 Mat3 cofactor(const Mat3& F) {
   Mat3 c;
@@ -679,8 +667,10 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
         ++count;
       }
     }
-    update_points_standin(mat, b.constants, b.switches, b.state.data(), index, count, d_eps, J_new,
-                          dt, length, out);
+    if (count > 0) {
+      update_points(mat, b.constants, b.switches, b.state.data(), index, count, d_eps, J_new, dt,
+                    length, out);
+    }
     for (std::size_t k = 0; k < count; ++k) {
       s.max_iterations = std::max(s.max_iterations, out[k].iterations);
       s.failed = s.failed || !out[k].converged;
