@@ -1,9 +1,3 @@
-// The lane kernels (Lane<8> = 64-byte vectors) are inlined into the
-// target_clones block loops below; GCC notes that passing such vectors by
-// value would change the ABI between the baseline and AVX-512 builds, which
-// matters only across translation units compiled differently, not here.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 #include "solver/fe/fe_body.hpp"
 
 #include <algorithm>
