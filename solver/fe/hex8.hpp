@@ -137,26 +137,31 @@ SPLAT_LANE_INLINE Hex8FieldT<T> hex8_nodal_cm(const Hex8FieldT<T>& m) {
   return n;
 }
 
+// (a x b)_i of modes p and q of c. A function forced inline, not a lambda: a
+// lambda returning a lane vector is compiled for the baseline target when
+// it is not inlined (as in the sanitizer build) and then disagrees with its
+// AVX-512 caller on how the vector is returned.
+template <class T>
+SPLAT_LANE_INLINE T hex8_mode_cross(const T (&c)[3][8], int p, int q, int i) {
+  const int j = (i + 1) % 3, k = (i + 2) % 3;
+  return c[j][p] * c[k][q] - c[k][p] * c[j][q];
+}
+
 // g_u and the exact volume from the position modes (formulas in the header
 // comment above); only modes 1..6 are read.
 template <class T>
 SPLAT_LANE_INLINE Hex8GeometryCmT<T> hex8_geometry_cm(const Hex8FieldT<T>& x) {
   const auto& c = x.u;
-  // a x b, component i, of modes p and q.
-  auto cross = [&c](int p, int q, int i) {
-    const int j = (i + 1) % 3, k = (i + 2) % 3;
-    return c[j][p] * c[k][q] - c[k][p] * c[j][q];
-  };
   constexpr double third = 1.0 / 3.0;
   Hex8GeometryCmT<T> g;
   for (int i = 0; i < 3; ++i) {
     // modes: e1 = 1, e2 = 2, e3 = 3, h1 = 4, h2 = 5, h3 = 6
-    g.g[0][i] = 8.0 * (cross(2, 3, i) + third * cross(6, 5, i));
-    g.g[1][i] = 8.0 * (cross(3, 1, i) + third * cross(4, 6, i));
-    g.g[2][i] = 8.0 * (cross(1, 2, i) + third * cross(5, 4, i));
-    g.g[3][i] = (8.0 * third) * (cross(3, 5, i) + cross(6, 2, i));
-    g.g[4][i] = (8.0 * third) * (cross(1, 6, i) + cross(4, 3, i));
-    g.g[5][i] = (8.0 * third) * (cross(5, 1, i) + cross(2, 4, i));
+    g.g[0][i] = 8.0 * (hex8_mode_cross(c, 2, 3, i) + third * hex8_mode_cross(c, 6, 5, i));
+    g.g[1][i] = 8.0 * (hex8_mode_cross(c, 3, 1, i) + third * hex8_mode_cross(c, 4, 6, i));
+    g.g[2][i] = 8.0 * (hex8_mode_cross(c, 1, 2, i) + third * hex8_mode_cross(c, 5, 4, i));
+    g.g[3][i] = (8.0 * third) * (hex8_mode_cross(c, 3, 5, i) + hex8_mode_cross(c, 6, 2, i));
+    g.g[4][i] = (8.0 * third) * (hex8_mode_cross(c, 1, 6, i) + hex8_mode_cross(c, 4, 3, i));
+    g.g[5][i] = (8.0 * third) * (hex8_mode_cross(c, 5, 1, i) + hex8_mode_cross(c, 2, 4, i));
   }
   // V = e_1 . g_1 + h_1 . g_4
   g.volume = (c[0][1] * g.g[0][0] + c[1][1] * g.g[0][1] + c[2][1] * g.g[0][2]) +
