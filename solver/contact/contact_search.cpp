@@ -7,6 +7,8 @@
 #include <numbers>
 #include <unordered_map>
 
+#include "solver/common/parallel.hpp"
+
 namespace splat {
 
 ContactSurface make_contact_surface(DetectionKind kind, std::vector<std::array<int, 4>> faces) {
@@ -56,6 +58,13 @@ ContactSurface make_particle_surface(const std::vector<int>& particles,
 }
 
 namespace {
+
+// Slave nodes per chunk of the bucket search, and the face and slave counts
+// from which its loops run in parallel (a slave node tests tens of faces, a
+// face only computes its box).
+constexpr std::size_t search_chunk = 64;
+constexpr std::size_t min_parallel_slaves = 256;
+constexpr std::size_t min_parallel_faces = 2048;
 
 // Pinball geometry of point p against particle x_m of radius R_m.
 PairGeometry project_on_particle(const Vec3& p, const Vec3& xm, double R_m) {
@@ -214,7 +223,12 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
   std::vector<std::uint8_t> near(nf, 0);
   const double reach =
       std::max(st.capture_depth, st.search_margin) + 2.0 * st.outside_tolerance + 1e-6;
-  for (std::size_t f = 0; f < nf; ++f) {
+  // Faces are independent; max and || do not depend on the order.
+  const long long nfl = static_cast<long long>(nf);
+  const bool parallel_faces = nf >= min_parallel_faces;
+  SPLAT_PARALLEL_PRAGMA(omp parallel for schedule(static) reduction(max : cell) if (parallel_faces))
+  for (long long fl = 0; fl < nfl; ++fl) {
+    const std::size_t f = static_cast<std::size_t>(fl);
     sizes[f] = face_size(master, static_cast<int>(f), x);
     Vec3 a = x[master.faces[f][0]], b = a;
     for (int k = 1; k < npf; ++k) {
@@ -250,20 +264,30 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
       for (std::int64_t j = j0; j <= j1; ++j)
         for (std::int64_t k = k0; k <= k1; ++k) grid[key(i, j, k)].push_back(static_cast<int>(f));
   }
-  std::vector<DetectedPair> all;
-  for (std::size_t s = 0; s < slave.nodes.size(); ++s) {
-    const Vec3& p = x[slave.nodes[s]];
-    const auto it = grid.find(key(cell_of(p.x()), cell_of(p.y()), planar ? 0 : cell_of(p.z())));
-    if (it == grid.end()) continue;
-    DetectedPair best;
-    bool found = false;
-    for (int f : it->second) {
-      if ((p.array() < lo[f].array()).any() || (p.array() > hi[f].array()).any()) continue;
-      consider(master, f, static_cast<int>(s), p, slave.node_radius(static_cast<int>(s)), x, st,
-               sizes[f], best, found, pinball > 0.0 ? &all : nullptr);
+  // Slave nodes in fixed chunks, in parallel; the chunks' pairs are joined in
+  // chunk order, so the list is the same for any thread count.
+  const std::size_t ns = slave.nodes.size();
+  std::vector<std::vector<DetectedPair>> chunk_pairs((ns + search_chunk - 1) / search_chunk);
+  for_each_block(ns, search_chunk, min_parallel_slaves, [&](std::size_t first, std::size_t last) {
+    std::vector<DetectedPair>& part = chunk_pairs[first / search_chunk];
+    std::vector<DetectedPair> all;
+    for (std::size_t s = first; s < last; ++s) {
+      const Vec3& p = x[slave.nodes[s]];
+      const auto it = grid.find(key(cell_of(p.x()), cell_of(p.y()), planar ? 0 : cell_of(p.z())));
+      if (it == grid.end()) continue;
+      DetectedPair best;
+      bool found = false;
+      for (int f : it->second) {
+        if ((p.array() < lo[f].array()).any() || (p.array() > hi[f].array()).any()) continue;
+        consider(master, f, static_cast<int>(s), p, slave.node_radius(static_cast<int>(s)), x, st,
+                 sizes[f], best, found, pinball > 0.0 ? &all : nullptr);
+      }
+      if (pinball > 0.0) append_all(all, part);
+      if (found) part.push_back(best);
     }
-    if (pinball > 0.0) append_all(all, out);
-    if (found) out.push_back(best);
+  });
+  for (const std::vector<DetectedPair>& part : chunk_pairs) {
+    out.insert(out.end(), part.begin(), part.end());
   }
   return out;
 }

@@ -13,6 +13,7 @@
 #include <omp.h>
 #endif
 
+#include "solver/common/parallel.hpp"
 #include "solver/core/model_builder.hpp"
 #include "solver/core/simulation_impl.hpp"
 #include "solver/io/result_file.hpp"
@@ -29,6 +30,13 @@ Simulation::Simulation(const Scene& scene, nlohmann::json resolved_scene, Simula
 }
 
 Simulation::~Simulation() = default;
+
+namespace {
+// Nodes per block of the node loops (stages 1, 4 and the kinetic energy),
+// and the node count from which they run in parallel.
+constexpr std::size_t node_block = 1024;
+constexpr std::size_t min_parallel_nodes = 4096;
+}  // namespace
 
 const NodeSet& Simulation::nodes() const {
   return impl_->model.nodes;
@@ -51,21 +59,26 @@ void Simulation::Impl::update_velocities(bool first) {
   const double dt_v = first ? 0.5 * dt_half : 0.5 * (dt_half_prev + dt_half);
   const std::size_t count = n.size();
   const Vec3 sph_power = sph_dissipative_power();
-  double ext_work = 0.0, wall_work = 0.0;
-  for (std::size_t i = 0; i < count; ++i) {
-    const double m = n.mass[i];
-    if (m <= 0.0) continue;  // node of eroded elements only
-    Vec3 v = n.v[i] + (dt_v / m) * n.f[i];
-    const std::uint8_t mask = model.constraint_mask[i];
-    if (mask != 0) {
-      const Vec3 v_free = v;
-      for (int c = 0; c < 3; ++c) {
-        if (mask & (1u << c)) v[c] = model.constraint_value[i][c];
-      }
-      ext_work += m * (v - v_free).dot(v) * dt_half / dt_v;
-    }
-    n.v[i] = v;
-  }
+  const double ext_work =
+      block_sum(count, node_block, min_parallel_nodes, 0.0, [&](std::size_t lo, std::size_t hi) {
+        double work = 0.0;
+        for (std::size_t i = lo; i < hi; ++i) {
+          const double m = n.mass[i];
+          if (m <= 0.0) continue;  // node of eroded elements only
+          Vec3 v = n.v[i] + (dt_v / m) * n.f[i];
+          const std::uint8_t mask = model.constraint_mask[i];
+          if (mask != 0) {
+            const Vec3 v_free = v;
+            for (int c = 0; c < 3; ++c) {
+              if (mask & (1u << c)) v[c] = model.constraint_value[i][c];
+            }
+            work += m * (v - v_free).dot(v) * dt_half / dt_v;
+          }
+          n.v[i] = v;
+        }
+        return work;
+      });
+  double wall_work = 0.0;
   // A node the wall held in the last step books the reaction's work over the
   // coming displacement, as the constraints above; a node landing on the wall
   // in this step makes a node-level plastic impact and books the kinetic
@@ -116,7 +129,11 @@ void Simulation::Impl::contact_constraints() {
 // Stage 4. Returns false when the run must stop (reason in s).
 bool Simulation::Impl::internal_forces(RunSummary& s) {
   NodeSet& n = model.nodes;
-  std::fill(n.f.begin(), n.f.end(), Vec3::Zero());
+  for_each_block(n.size(), node_block, min_parallel_nodes,
+                 [&](std::size_t first, std::size_t last) {
+                   std::fill(n.f.begin() + static_cast<std::ptrdiff_t>(first),
+                             n.f.begin() + static_cast<std::ptrdiff_t>(last), Vec3::Zero());
+                 });
   dt_stable = std::numeric_limits<double>::infinity();
   for (FeBody& body : model.bodies) {
     FeStepResult r = fe_internal_forces(body, n, dt_half);
@@ -195,8 +212,13 @@ void Simulation::Impl::boundary_forces() {
 
 void Simulation::Impl::compute_energies() {
   const NodeSet& n = model.nodes;
-  double kinetic = 0.0;
-  for (std::size_t i = 0; i < n.size(); ++i) kinetic += 0.5 * n.mass[i] * n.v[i].squaredNorm();
+  const double kinetic = block_sum(n.size(), node_block, min_parallel_nodes, 0.0,
+                                   [&](std::size_t first, std::size_t last) {
+                                     double sum = 0.0;
+                                     for (std::size_t i = first; i < last; ++i)
+                                       sum += 0.5 * n.mass[i] * n.v[i].squaredNorm();
+                                     return sum;
+                                   });
   double internal = 0.0, plastic = 0.0;
   for (const FeBody& b : model.bodies) {
     internal += fe_internal_energy(b);

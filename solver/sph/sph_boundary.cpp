@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "solver/common/parallel.hpp"
 #include "solver/mesh/mesh.hpp"
 
 namespace splat {
@@ -38,17 +39,29 @@ SphAbsorbing make_sph_absorbing(const SphBody& body, const NodeSet& nodes, std::
 }
 
 double apply_sph_absorbing(const SphAbsorbing& a, NodeSet& nodes) {
-  double power = 0.0;
-  for (std::size_t k = 0; k < a.node.size(); ++k) {
-    const std::size_t g = static_cast<std::size_t>(a.node[k]);
-    const Vec3& v = nodes.v[g];
-    const Vec3& n = a.normal[k];
-    const double vn = v.dot(n);
-    const Vec3 f = -a.area[k] * (a.rho_cp * vn * n + a.rho_cs * (v - vn * n));
-    nodes.f[g] += f;
-    power -= f.dot(v);
-  }
-  return power;
+  // An edge or corner particle has one entry per face, next to each other
+  // (make_sph_absorbing). A block leaves the entries of the node its
+  // predecessor ends with to that block and runs on to the last entry of its
+  // own last node, so each node's forces are added by one thread, in entry
+  // order.
+  constexpr std::size_t block = 512;
+  const std::size_t n = a.node.size();
+  return block_sum(n, block, 2 * block, 0.0, [&](std::size_t first, std::size_t last) {
+    while (first > 0 && first < last && a.node[first] == a.node[first - 1]) ++first;
+    if (first == last) return 0.0;  // all entries belong to the previous block's node
+    while (last < n && a.node[last] == a.node[last - 1]) ++last;
+    double power = 0.0;
+    for (std::size_t k = first; k < last; ++k) {
+      const std::size_t g = static_cast<std::size_t>(a.node[k]);
+      const Vec3& v = nodes.v[g];
+      const Vec3& nk = a.normal[k];
+      const double vn = v.dot(nk);
+      const Vec3 f = -a.area[k] * (a.rho_cp * vn * nk + a.rho_cs * (v - vn * nk));
+      nodes.f[g] += f;
+      power -= f.dot(v);
+    }
+    return power;
+  });
 }
 
 }  // namespace splat
