@@ -39,7 +39,8 @@ struct EnergyBudget {
   double contact_stored = 0.0;  // energy in penalty contact springs now (part of -contact_work)
   double adhesion = 0.0;        // charged to the links' budgets G_c A (cohesive_law.hpp), >= 0; the
                                 // links' mechanical work is part of contact_work (see interface)
-  double balance_error = 0.0;   // (total now - initial - external - wall - contact) / initial, -
+  double balance_error = 0.0;   // (total now - initial - external - wall - contact) /
+                                // (initial + max(external, 0)), -
 };
 
 struct BodySummary {

@@ -53,7 +53,9 @@ bool Simulation::axisymmetric() const {
 
 // Stage 1: central-difference velocity update, then velocity constraints and
 // rigid walls. The work of the constraint reactions R = m (v - v_free) / dt
-// over the coming displacement dt v is booked as external (or wall) work.
+// over the coming displacement dt v is booked as external (or wall) work;
+// in the first step, where a constraint sets the velocity (a jump from the
+// initial velocity), the kinetic energy change of that jump is.
 void Simulation::Impl::update_velocities(bool first) {
   NodeSet& n = model.nodes;
   const double dt_v = first ? 0.5 * dt_half : 0.5 * (dt_half_prev + dt_half);
@@ -72,7 +74,12 @@ void Simulation::Impl::update_velocities(bool first) {
             for (int c = 0; c < 3; ++c) {
               if (mask & (1u << c)) v[c] = model.constraint_value[i][c];
             }
-            work += m * (v - v_free).dot(v) * dt_half / dt_v;
+            // The first step sets the prescribed velocity, a jump from the
+            // initial one where they differ: the constraint's impulse makes
+            // the kinetic energy change m dv (v_free + v) / 2 (as a node
+            // landing on a wall).
+            work += first ? 0.5 * m * (v - v_free).dot(v + v_free)
+                          : m * (v - v_free).dot(v) * dt_half / dt_v;
           }
           n.v[i] = v;
         }
@@ -240,7 +247,11 @@ void Simulation::Impl::compute_energies() {
   }
   const double total = energy.kinetic + energy.internal + energy.hourglass +
                        energy.artificial_viscosity + energy.absorbed + energy.eroded;
-  const double reference = std::max(energy.initial_total, 1e-300);
+  // Relative to the energy the run was given: the initial energy plus the
+  // work put in by prescribed velocities (a body driven from rest has no
+  // initial energy).
+  const double reference =
+      std::max(energy.initial_total + std::max(energy.external_work, 0.0), 1e-300);
   energy.balance_error = (total - energy.initial_total - energy.external_work - energy.wall_work -
                           energy.contact_work) /
                          reference;

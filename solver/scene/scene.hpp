@@ -114,7 +114,8 @@ struct TimeSpec {
   long long max_steps = 10'000'000;    // -
   double min_time_step = 0.0;          // s; below it the run ends `unstable`; 0 = 1e-6 of the first
   double wall_clock_limit = 0.0;       // s; 0 = none
-  double energy_balance_limit = 0.05;  // |error| / initial energy above which the run ends unstable
+  double energy_balance_limit = 0.05;  // |balance error| above which the run ends unstable
+                                       // (checked in runs that start with energy)
 };
 
 struct OutputSpec {
