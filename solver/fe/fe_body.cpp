@@ -154,7 +154,8 @@ int global_node(const std::string& name, std::size_t e, int local, std::size_t n
 // same memory here (store-forwarding stalls). (w21, w02, w10) are W(2,1),
 // W(0,2), W(1,0).
 template <class T>
-SPLAT_LANE_INLINE void hughes_winget_rotation_cm(T w21, T w02, T w10, double dt, T Q[3][3]) {
+SPLAT_LANE_INLINE void hughes_winget_rotation_cm(const T& w21, const T& w02, const T& w10,
+                                                 double dt, T Q[3][3]) {
   const double h = 0.5 * dt;
   const T a0 = h * w21, a1 = h * w02, a2 = h * w10;
   const T a_sq = a0 * a0 + a1 * a1 + a2 * a2;

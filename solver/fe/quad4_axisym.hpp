@@ -122,7 +122,8 @@ inline Mat3 quad4_axisym_velocity_gradient_cm(const Quad4Field& v, const Quad4Gr
 // Internal forces per radian from the (r, z, theta) Cauchy stress components
 // s_rr, s_rz, s_zr, s_zz, s_thth (overwrites f), N.
 template <class T>
-SPLAT_LANE_INLINE void quad4_axisym_stress_forces_cm(T s_rr, T s_rz, T s_zr, T s_zz, T s_thth,
+SPLAT_LANE_INLINE void quad4_axisym_stress_forces_cm(const T& s_rr, const T& s_rz, const T& s_zr,
+                                                     const T& s_zz, const T& s_thth,
                                                      const Quad4GradientCmT<T>& g,
                                                      Quad4FieldT<T>& f) {
   const T V = g.volume;
@@ -141,7 +142,7 @@ inline void quad4_axisym_stress_forces_cm(const Mat3& sigma, const Quad4Gradient
 
 // L_c = A / max(|x_2 - x_0|, |x_3 - x_1|), m.
 template <class T>
-SPLAT_LANE_INLINE T quad4_axisym_characteristic_length_cm(const Quad4FieldT<T>& x, T area) {
+SPLAT_LANE_INLINE T quad4_axisym_characteristic_length_cm(const Quad4FieldT<T>& x, const T& area) {
   const T dr0 = x.u[0][2] - x.u[0][0], dz0 = x.u[1][2] - x.u[1][0];
   const T dr1 = x.u[0][3] - x.u[0][1], dz1 = x.u[1][3] - x.u[1][1];
   const T d2 = lane_max(dr0 * dr0 + dz0 * dz0, dr1 * dr1 + dz1 * dz1);
@@ -174,7 +175,7 @@ SPLAT_LANE_INLINE void quad4_axisym_hourglass_rate_cm(const std::array<T, 4>& ga
 // Adds the viscous hourglass forces; returns a_h |qdot|^2 >= 0, W per radian.
 template <class T>
 SPLAT_LANE_INLINE T quad4_axisym_hourglass_viscous_cm(const std::array<T, 4>& gamma,
-                                                      const Quad4FieldT<T>& v, T a_h,
+                                                      const Quad4FieldT<T>& v, const T& a_h,
                                                       Quad4FieldT<T>& f) {
   T qdot[2];
   quad4_axisym_hourglass_rate_cm(gamma, v, qdot);
@@ -189,8 +190,9 @@ SPLAT_LANE_INLINE T quad4_axisym_hourglass_viscous_cm(const std::array<T, 4>& ga
 // W per radian.
 template <class T>
 SPLAT_LANE_INLINE T quad4_axisym_hourglass_stiffness_cm(const std::array<T, 4>& gamma,
-                                                        const Quad4FieldT<T>& v, T kappa, double dt,
-                                                        T R00, T R01, T R10, T R11, T Q[2],
+                                                        const Quad4FieldT<T>& v, const T& kappa,
+                                                        double dt, const T& R00, const T& R01,
+                                                        const T& R10, const T& R11, T Q[2],
                                                         Quad4FieldT<T>& f) {
   T qdot[2];
   quad4_axisym_hourglass_rate_cm(gamma, v, qdot);

@@ -47,7 +47,7 @@ inline double lane_max(double a, double b) {
   return std::max(a, b);
 }
 template <class V>
-requires is_lane<V> SPLAT_LANE_INLINE V lane_max(V a, V b) {
+requires is_lane<V> SPLAT_LANE_INLINE V lane_max(const V& a, const V& b) {
   return a < b ? b : a;
 }
 
@@ -55,7 +55,7 @@ inline double lane_sqrt(double a) {
   return std::sqrt(a);
 }
 template <class V>
-requires is_lane<V> SPLAT_LANE_INLINE V lane_sqrt(V a) {
+requires is_lane<V> SPLAT_LANE_INLINE V lane_sqrt(const V& a) {
   V r;
   for (int l = 0; l < static_cast<int>(sizeof(V) / sizeof(double)); ++l) r[l] = std::sqrt(a[l]);
   return r;
@@ -66,7 +66,7 @@ inline double lane_if_positive(double cond, double value) {
   return cond > 0.0 ? value : 0.0;
 }
 template <class V>
-requires is_lane<V> SPLAT_LANE_INLINE V lane_if_positive(V cond, V value) {
+requires is_lane<V> SPLAT_LANE_INLINE V lane_if_positive(const V& cond, const V& value) {
   return cond > V{} ? value : V{};
 }
 
@@ -75,7 +75,7 @@ inline double lane_if_nonzero(double cond, double value) {
   return cond != 0.0 ? value : 0.0;
 }
 template <class V>
-requires is_lane<V> SPLAT_LANE_INLINE V lane_if_nonzero(V cond, V value) {
+requires is_lane<V> SPLAT_LANE_INLINE V lane_if_nonzero(const V& cond, const V& value) {
   return cond != V{} ? value : V{};
 }
 
