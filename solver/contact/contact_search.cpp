@@ -63,8 +63,8 @@ namespace {
 // from which its loops run in parallel (a slave node tests tens of faces, a
 // face only computes its box).
 constexpr std::size_t search_chunk = 64;
-constexpr std::size_t min_parallel_slaves = 256;
-constexpr std::size_t min_parallel_faces = 2048;
+constexpr std::size_t min_parallel_slaves = 128;
+constexpr std::size_t min_parallel_faces = 512;
 
 // Pinball geometry of point p against particle x_m of radius R_m.
 PairGeometry project_on_particle(const Vec3& p, const Vec3& xm, double R_m) {

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string>
 
+#include "solver/common/parallel.hpp"
+
 namespace splat {
 namespace {
 
@@ -64,14 +66,26 @@ BodyMotion motion(const Model& model, int b) {
   if (b < 0) return out;
   const NodeRange body = nodes_of(model, b);
   const NodeSet& n = model.nodes;
-  Vec3 momentum = Vec3::Zero();
-  for (std::size_t i = body.begin; i < body.end; ++i) {
-    if (n.mass[i] <= 0.0) continue;
-    out.mass += n.mass[i];
-    momentum += n.mass[i] * n.v[i];
-    out.kinetic += 0.5 * n.mass[i] * n.v[i].squaredNorm();
-  }
-  out.velocity = centroid_velocity(model, momentum, out.mass);
+  // (mass, momentum, kinetic energy) over fixed blocks: the same bits for
+  // any thread count.
+  using Sums = Eigen::Matrix<double, 5, 1>;
+  constexpr std::size_t block = 1024, min_parallel = 4096;
+  const Sums sums = block_sum(body.end - body.begin, block, min_parallel, Sums(Sums::Zero()),
+                              [&](std::size_t lo, std::size_t hi) {
+                                Sums sum = Sums::Zero();
+                                for (std::size_t k = lo; k < hi; ++k) {
+                                  const std::size_t i = body.begin + k;
+                                  const double m = n.mass[i];
+                                  if (m <= 0.0) continue;
+                                  sum(0) += m;
+                                  sum.segment<3>(1) += m * n.v[i];
+                                  sum(4) += 0.5 * m * n.v[i].squaredNorm();
+                                }
+                                return sum;
+                              });
+  out.mass = sums(0);
+  out.kinetic = sums(4);
+  out.velocity = centroid_velocity(model, Vec3(sums.segment<3>(1)), out.mass);
   return out;
 }
 

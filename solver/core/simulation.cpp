@@ -36,6 +36,11 @@ namespace {
 // and the node count from which they run in parallel.
 constexpr std::size_t node_block = 1024;
 constexpr std::size_t min_parallel_nodes = 4096;
+// The same for the elements' energy sums and the absorbing faces.
+constexpr std::size_t element_block = 1024;
+constexpr std::size_t min_parallel_elements = 4096;
+constexpr std::size_t face_block = 128;
+constexpr std::size_t min_parallel_faces = 256;
 }  // namespace
 
 const NodeSet& Simulation::nodes() const {
@@ -172,6 +177,38 @@ bool Simulation::Impl::internal_forces(RunSummary& s) {
   return sph_internal_forces_all(s);
 }
 
+// Viscous forces of an absorbing face on its nodes (stage 5).
+FaceForces absorbing_face_forces(const AbsorbingFace& face, const NodeSet& n) {
+  FaceForces out;
+  Vec3 normal;
+  double area;
+  if (face.count == 2) {  // axisymmetric segment a -> b, outward normal on the right
+    const Vec3 a = n.x[face.nodes[0]], b = n.x[face.nodes[1]];
+    const Vec3 d = b - a;
+    const double len = d.norm();
+    if (len <= 0.0) return out;
+    normal = Vec3(d.y(), -d.x(), 0.0) / len;
+    area = len * 0.5 * (a.x() + b.x());  // per radian
+  } else {
+    const Vec3& x0 = n.x[face.nodes[0]];
+    const Vec3& x1 = n.x[face.nodes[1]];
+    const Vec3& x2 = n.x[face.nodes[2]];
+    const Vec3& x3 = n.x[face.nodes[3]];
+    const Vec3 av = 0.5 * (x2 - x0).cross(x3 - x1);
+    area = av.norm();
+    if (area <= 0.0) return out;
+    normal = av / area;
+  }
+  const double share = area / face.count;
+  for (int k = 0; k < face.count; ++k) {
+    const Vec3& v = n.v[face.nodes[k]];
+    const double vn = v.dot(normal);
+    out.f[k] = -share * (face.rho_cp * vn * normal + face.rho_cs * (v - vn * normal));
+  }
+  out.live = true;
+  return out;
+}
+
 // Stage 5: penalty contact forces, then viscous absorbing boundaries,
 // f = -A (rho c_p v_n n + rho c_s v_t) on each node's share A of a boundary
 // face (Lysmer & Kuhlemeyer 1969).
@@ -182,35 +219,25 @@ void Simulation::Impl::boundary_forces() {
       c.penalty_forces(n, model.constraint_mask, dt_half);
     }
   }
-  double power = 0.0;
-  for (const AbsorbingFace& face : model.absorbing) {
-    Vec3 normal;
-    double area;
-    if (face.count == 2) {  // axisymmetric segment a -> b, outward normal on the right
-      const Vec3 a = n.x[face.nodes[0]], b = n.x[face.nodes[1]];
-      const Vec3 d = b - a;
-      const double len = d.norm();
-      if (len <= 0.0) continue;
-      normal = Vec3(d.y(), -d.x(), 0.0) / len;
-      area = len * 0.5 * (a.x() + b.x());  // per radian
-    } else {
-      const Vec3& x0 = n.x[face.nodes[0]];
-      const Vec3& x1 = n.x[face.nodes[1]];
-      const Vec3& x2 = n.x[face.nodes[2]];
-      const Vec3& x3 = n.x[face.nodes[3]];
-      const Vec3 av = 0.5 * (x2 - x0).cross(x3 - x1);
-      area = av.norm();
-      if (area <= 0.0) continue;
-      normal = av / area;
+  // Each face's nodal forces in parallel, then added to its nodes face by
+  // face (faces share nodes): the same sums, in the same order, as one face
+  // after the other.
+  const std::size_t faces = model.absorbing.size();
+  absorbing_forces.resize(faces);
+  for_each_block(faces, face_block, min_parallel_faces, [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t k = lo; k < hi; ++k) {
+      absorbing_forces[k] = absorbing_face_forces(model.absorbing[k], n);
     }
-    const double share = area / face.count;
-    for (int k = 0; k < face.count; ++k) {
-      const int i = face.nodes[k];
-      const Vec3& v = n.v[i];
-      const double vn = v.dot(normal);
-      const Vec3 f = -share * (face.rho_cp * vn * normal + face.rho_cs * (v - vn * normal));
-      n.f[i] += f;
-      power += f.dot(v);
+  });
+  double power = 0.0;
+  for (std::size_t k = 0; k < faces; ++k) {
+    const AbsorbingFace& face = model.absorbing[k];
+    const FaceForces& ff = absorbing_forces[k];
+    if (!ff.live) continue;
+    for (int j = 0; j < face.count; ++j) {
+      const int i = face.nodes[j];
+      n.f[i] += ff.f[j];
+      power += ff.f[j].dot(n.v[i]);
     }
   }
   energy.absorbed -= power * dt_half * scale();
@@ -228,10 +255,18 @@ void Simulation::Impl::compute_energies() {
                                    });
   double internal = 0.0, plastic = 0.0;
   for (const FeBody& b : model.bodies) {
-    internal += fe_internal_energy(b);
-    for (std::size_t e = 0; e < b.num_elements(); ++e) {
-      if (b.active[e]) plastic += b.volume0[e] * b.state[e].plastic_work;
-    }
+    const Vec2 sums = block_sum(b.num_elements(), element_block, min_parallel_elements,
+                                Vec2(Vec2::Zero()), [&](std::size_t lo, std::size_t hi) {
+                                  Vec2 sum = Vec2::Zero();
+                                  for (std::size_t e = lo; e < hi; ++e) {
+                                    if (!b.active[e]) continue;
+                                    sum +=
+                                        b.volume0[e] * Vec2(b.state[e].e, b.state[e].plastic_work);
+                                  }
+                                  return sum;
+                                });
+    internal += sums.x();
+    plastic += sums.y();
   }
   sph_energies(internal, plastic);
   energy.kinetic = kinetic * scale();

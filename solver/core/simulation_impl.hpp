@@ -2,6 +2,7 @@
 // simulation_output.cpp (result file). Not part of the solver's interface.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "solver/core/impact_run.hpp"
 #include "solver/core/model_builder.hpp"
@@ -16,6 +18,14 @@
 #include "solver/io/result_file.hpp"
 
 namespace splat {
+
+// Nodal forces of one absorbing face (stage 5); live = false for a face
+// collapsed to zero area.
+struct FaceForces {
+  std::array<Vec3, 4> f;
+  bool live = false;
+};
+FaceForces absorbing_face_forces(const AbsorbingFace& face, const NodeSet& n);
 
 struct Simulation::Impl {
   Scene scene;
@@ -40,6 +50,7 @@ struct Simulation::Impl {
   // particle_impact scenes: the verdict monitor and the latest settled verdict.
   std::optional<ImpactRun> impact;
   std::optional<VerdictDecision> verdict;
+  std::vector<FaceForces> absorbing_forces;  // stage 5 scratch, one per absorbing face
 
   // Energy factor: axisymmetric quantities are per radian.
   double scale() const { return model.axisymmetric ? 2.0 * std::numbers::pi : 1.0; }
