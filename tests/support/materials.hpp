@@ -1,6 +1,9 @@
 // Materials the element tests and benchmarks build by hand (no material file
-// needed): Johnson-Cook OFHC copper, and the switches that leave damage out.
+// needed): Johnson-Cook OFHC copper, the switches that leave damage out, and
+// linear-elastic steel as a scene's inline material.
 #pragma once
+
+#include <nlohmann/json.hpp>
 
 #include "solver/material/material.hpp"
 
@@ -24,6 +27,31 @@ inline ModelSwitches no_damage() {
   ModelSwitches sw;
   sw.damage = false;
   return sw;
+}
+
+// Linear-elastic steel for scenes (round numbers): E 200 GPa, nu 0.3,
+// rho 7850 kg/m^3, and a Johnson-Cook yield stress of 100 GPa that no test
+// reaches.
+inline constexpr double steel_E = 200e9;     // Pa
+inline constexpr double steel_nu = 0.3;      // -
+inline constexpr double steel_rho = 7850.0;  // kg/m^3
+inline nlohmann::json elastic_steel_json() {
+  return {{"name", "elastic-steel"},
+          {"source", "round numbers for steel; yield stress raised out of reach"},
+          {"density", steel_rho},
+          {"elastic", {{"E", steel_E}, {"nu", steel_nu}}},
+          {"strength",
+           {{"model", "johnson-cook"},
+            {"A", 1e11},
+            {"B", 0.0},
+            {"n", 1.0},
+            {"C", 0.0},
+            {"eps_dot_0", 1.0},
+            {"m", 1.0},
+            {"T_ref", 300.0},
+            {"T_melt", 1800.0}}},
+          {"thermal", {{"c_p", 460.0}, {"heat_fraction", 0.9}}},
+          {"eos", {{"model", "linear"}}}};
 }
 
 }  // namespace splat::test_support

@@ -14,34 +14,19 @@
 #include "solver/core/simulation.hpp"
 #include "solver/input/scene_io.hpp"
 #include "solver/io/result_file.hpp"
+#include "support/materials.hpp"
 
 namespace splat {
 namespace {
 
 using nlohmann::json;
 
-constexpr double E_steel = 200e9;     // Pa
-constexpr double nu_steel = 0.3;      // -
-constexpr double rho_steel = 7850.0;  // kg/m^3
+constexpr double E_steel = test_support::steel_E;      // Pa
+constexpr double rho_steel = test_support::steel_rho;  // kg/m^3
 
 // Linear-elastic steel: a yield stress far above anything these tests reach.
 json elastic_steel() {
-  return {{"name", "elastic-steel"},
-          {"source", "round numbers for steel; yield stress raised out of reach"},
-          {"density", rho_steel},
-          {"elastic", {{"E", E_steel}, {"nu", nu_steel}}},
-          {"strength",
-           {{"model", "johnson-cook"},
-            {"A", 1e11},
-            {"B", 0.0},
-            {"n", 1.0},
-            {"C", 0.0},
-            {"eps_dot_0", 1.0},
-            {"m", 1.0},
-            {"T_ref", 300.0},
-            {"T_melt", 1800.0}}},
-          {"thermal", {{"c_p", 460.0}, {"heat_fraction", 0.9}}},
-          {"eos", {{"model", "linear"}}}};
+  return test_support::elastic_steel_json();
 }
 
 json all_switches_off() {

@@ -29,34 +29,17 @@
 
 #include "solver/core/simulation.hpp"
 #include "solver/input/scene_io.hpp"
+#include "support/materials.hpp"
 
 namespace splat {
 namespace {
 
-constexpr double rho = 7850.0, E = 200e9, nu = 0.3, V = 1.0;
+constexpr double rho = test_support::steel_rho, E = test_support::steel_E, V = 1.0;
 constexpr double width = 1e-3, length = 10e-3, end_time = 1.5e-6;
 
 nlohmann::json driven_bar(double coefficient) {
   using nlohmann::json;
-  const json material = {
-      {"name", "elastic-steel"},
-      {"source",
-       "generic structural steel (E 200 GPa, nu 0.3, rho 7850); yield set far above "
-       "the 39 MPa of the test"},
-      {"density", rho},
-      {"elastic", {{"E", E}, {"nu", nu}}},
-      {"strength",
-       {{"model", "johnson-cook"},
-        {"A", 1e9},
-        {"B", 0.0},
-        {"n", 1.0},
-        {"C", 0.0},
-        {"eps_dot_0", 1.0},
-        {"m", 1.0},
-        {"T_ref", 300},
-        {"T_melt", 1800}}},
-      {"thermal", {{"c_p", 460}, {"heat_fraction", 0.9}}},
-      {"eos", {{"model", "linear"}}}};
+  const json material = test_support::elastic_steel_json();
   const json bar = {
       {"name", "bar"},
       {"material", material},
