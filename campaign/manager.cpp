@@ -1,5 +1,7 @@
 #include "campaign/manager.hpp"
 
+#include <sched.h>
+
 #include <csignal>
 #include <cstring>
 #include <deque>
@@ -38,6 +40,15 @@ std::string signal_name(int sig) {
 
 std::filesystem::path self_executable() {
   return std::filesystem::read_symlink("/proc/self/exe");
+}
+
+// Cores this process may run on (its CPU affinity: a container or taskset
+// limit counts), at least 1.
+int usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1u, std::thread::hardware_concurrency());
 }
 
 }  // namespace
@@ -161,6 +172,13 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   const std::string host = host_name();
   const std::string owner = this_process_owner();
   const int workers = std::max(1, options.workers);
+  // More job threads than cores: waiting OpenMP threads must sleep, not spin,
+  // or they take the cores the other jobs compute on (unless the user's
+  // environment already chooses a wait policy).
+  const std::vector<std::string> job_environment =
+      workers * spec.job.threads > usable_cores() && !std::getenv("OMP_WAIT_POLICY")
+          ? std::vector<std::string>{"OMP_WAIT_POLICY=passive"}
+          : std::vector<std::string>{};
 
   SweepReport report;
   CampaignRecord rec;
@@ -214,6 +232,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     ps.stderr_file = dir / "stderr.txt";
     ps.time_limit = spec.job.time_limit;
     ps.cancel = &cancel_running;
+    ps.environment = job_environment;
     ++started;
     const ProcessResult pr = run_process(ps);
     JobEnd e = interpret(job, pr, dir, spec.job);

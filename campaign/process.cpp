@@ -13,6 +13,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 namespace splat::campaign {
@@ -96,6 +97,20 @@ ProcessResult run_process(const ProcessSpec& spec_in) {
   std::vector<char*> argv;
   for (const std::string& a : spec.argv) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  // The inherited environment without the names spec.environment sets, then those.
+  std::vector<char*> envp;
+  for (char** e = environ; e && *e; ++e) {
+    const std::string_view entry(*e);
+    const std::string_view name = entry.substr(0, entry.find('='));
+    const bool replaced =
+        std::any_of(spec.environment.begin(), spec.environment.end(), [&](const std::string& s) {
+          return s.size() > name.size() && s.compare(0, name.size(), name) == 0 &&
+                 s[name.size()] == '=';
+        });
+    if (!replaced) envp.push_back(*e);
+  }
+  for (const std::string& s : spec.environment) envp.push_back(const_cast<char*>(s.c_str()));
+  envp.push_back(nullptr);
   const int out_fd = open(spec.stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   const int err_fd = open(spec.stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (out_fd < 0 || err_fd < 0) {
@@ -124,7 +139,7 @@ ProcessResult run_process(const ProcessSpec& spec_in) {
     dup2(err_fd, STDERR_FILENO);
     const int devnull = open("/dev/null", O_RDONLY);
     if (devnull >= 0) dup2(devnull, STDIN_FILENO);
-    execv(argv[0], argv.data());
+    execve(argv[0], argv.data(), envp.data());
     const char msg[] = "splat campaign: cannot execute the job program\n";
     ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
     (void)ignored;

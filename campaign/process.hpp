@@ -19,6 +19,9 @@ struct ProcessSpec {
   // Set from outside to stop the child (SIGTERM, then SIGKILL after the grace time).
   const std::atomic<bool>* cancel = nullptr;
   double kill_grace = 1.0;  // s between SIGTERM and SIGKILL
+  // "NAME=VALUE" entries set in the child's environment (the rest is
+  // inherited; an entry replaces an inherited variable of the same name).
+  std::vector<std::string> environment;
 };
 
 enum class ProcessEnd {

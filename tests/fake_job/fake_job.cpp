@@ -11,9 +11,11 @@
 //      "garbage": true,              print text that is not JSON, exit 0
 //      "outcome": "unstable",        outcome to report (default: from threshold)
 //      "threshold": 2.5,             stick when V0 < threshold, else rebound
-//      "log": "/tmp/x.log"}}         append "start DIR" / "end DIR" lines
+//      "log": "/tmp/x.log",          append "start DIR" / "end DIR" lines
+//      "log_env": "NAME"}}           and "env NAME=VALUE" (or "env NAME unset")
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -43,6 +45,12 @@ int main(int argc, char** argv) {
     std::ofstream(log, std::ios::app) << what << " " << out_dir << "\n";
   };
   note("start");
+  const std::string env_name = fake.value("log_env", "");
+  if (!log.empty() && !env_name.empty()) {
+    const char* value = std::getenv(env_name.c_str());
+    std::ofstream(log, std::ios::app)
+        << "env " << env_name << (value ? "=" + std::string(value) : std::string(" unset")) << "\n";
+  }
   if (fake.value("ignore_term", false)) std::signal(SIGTERM, SIG_IGN);
   const int transient = fake.value("transient_failures", 0);
   if (transient > 0) {

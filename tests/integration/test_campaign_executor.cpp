@@ -6,11 +6,13 @@
 // kill -9 of the manager and resume with every job ending exactly once, and
 // cache reuse.
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -227,6 +229,38 @@ TEST(campaign_executor, finished_jobs_are_reused_and_rerun_on_request) {
   EXPECT_EQ(r.jobs_started, 4);
   EXPECT_EQ(r.windows.size(), 1u);
   EXPECT_EQ(*r.windows[0].maximum_velocity, 2.5);
+}
+
+// More job threads than cores (workers x threads): the jobs' OpenMP threads
+// must wait passively, or the spinning ones take the cores the other jobs
+// compute on; within the cores the wait policy is left alone.
+TEST(campaign_executor, oversubscribed_jobs_wait_passively) {
+  TempDir t;
+  const char* saved = std::getenv("OMP_WAIT_POLICY");  // ctest sets it for every test
+  const std::string saved_value = saved ? saved : "";
+  unsetenv("OMP_WAIT_POLICY");
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  ASSERT_EQ(sched_getaffinity(0, sizeof set, &set), 0);
+  const int cores = CPU_COUNT(&set);
+  auto env_lines = [&](const std::string& name, int workers, int threads) {
+    const fs::path log = t.path / (name + ".log");
+    const json fake = {{"threshold", 5}, {"log", log.string()}, {"log_env", "OMP_WAIT_POLICY"}};
+    CampaignSpec spec = fake_campaign(name, {fake}, {1.0, 2.0});
+    spec.job.threads = threads;
+    Store store(t.path / (name + ".db"));
+    const SweepReport r = run_sweep(store, spec, fake_options(workers));
+    EXPECT_EQ(r.counts.succeeded, 2) << name;
+    std::vector<std::string> env;
+    for (const std::string& l : lines_of(log))
+      if (l.rfind("env ", 0) == 0) env.push_back(l);
+    return env;
+  };
+  const std::vector<std::string> over = env_lines("over", cores, 2);
+  const std::vector<std::string> within = env_lines("within", 1, 1);
+  if (saved) setenv("OMP_WAIT_POLICY", saved_value.c_str(), 1);
+  EXPECT_EQ(over, std::vector<std::string>(2, "env OMP_WAIT_POLICY=passive"));
+  EXPECT_EQ(within, std::vector<std::string>(2, "env OMP_WAIT_POLICY unset"));
 }
 
 // kill -9 of a running manager (a forked process running the sweep), then a
