@@ -575,7 +575,10 @@ SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const
 void sph_update_reference(SphBody& b, const NodeSet& nodes) {
   const std::size_t n = b.size();
   const double h0 = b.settings.h_over_spacing * b.spacing;
-  for (std::size_t i = 0; i < n; ++i) {
+  const long long count = static_cast<long long>(n);
+  SPLAT_OMP(omp parallel for schedule(static) if (count >= min_parallel_particles))
+  for (long long ii = 0; ii < count; ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
     b.X[i] = nodes.x[b.node_begin + i];
     const double J = b.F[i].determinant();
     if (b.active[i] && J > 0.0) {
@@ -610,11 +613,12 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       } else {
         deformation<false>(b, nodes, mirror_table, i, b.F[i], b.Fdot[i]);
       }
-      s.max_deformation = std::max(s.max_deformation, (b.F[i] - Mat3::Identity()).norm());
+      // Squared here, the root of the largest at the end (the same value).
+      s.max_deformation = std::max(s.max_deformation, (b.F[i] - Mat3::Identity()).squaredNorm());
     });
     double m = 0.0;
     for (const BlockSums& s : blocks) m = std::max(m, s.max_deformation);
-    return m;
+    return std::sqrt(m);
   };
   result.max_deformation = compute_F();
   const double threshold = b.settings.update_threshold;
