@@ -767,7 +767,7 @@ namespace {
 // block order: the same bits for any thread count.
 template <class Term>
 Vec2 particle_sum(std::size_t n, Term&& term) {
-  return block_sum(n, block_size, static_cast<std::size_t>(min_parallel_particles),
+  return block_sum(n, sum_block_size, static_cast<std::size_t>(min_parallel_particles),
                    Vec2(Vec2::Zero()), [&](std::size_t first, std::size_t last) {
                      Vec2 sum = Vec2::Zero();
                      for (std::size_t i = first; i < last; ++i) sum += term(i);
