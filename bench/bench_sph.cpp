@@ -49,8 +49,8 @@ std::size_t body_bytes(const SphBody& b, const NodeSet& n) {
          bytes(b.J_ref) + bytes(b.F_ref) + bytes(b.h) + bytes(b.pairs.offsets) + bytes(b.pairs.j) +
          bytes(b.pairs.op) + bytes(b.pair_t) + bytes(b.pair_hg) + bytes(b.pair_visc) +
          bytes(b.null_projector) + bytes(b.B) + bytes(b.state) + bytes(b.F) + bytes(b.Fdot) +
-         bytes(b.PB) + bytes(b.dt_bound) + bytes(b.active) + bytes(n.x0) + bytes(n.x) + bytes(n.v) +
-         bytes(n.f) + bytes(n.mass) + bytes(n.boundary);
+         bytes(b.record) + bytes(b.dt_bound) + bytes(b.active) + bytes(n.x0) + bytes(n.x) +
+         bytes(n.v) + bytes(n.f) + bytes(n.mass) + bytes(n.boundary);
 }
 
 void BM_sph_internal_forces(benchmark::State& state) {

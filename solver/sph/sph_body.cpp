@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -17,9 +18,12 @@
 #endif
 
 // The pair loops are also compiled for AVX2 and AVX-512, chosen at run time (never
-// -march=native: the build must run on machines without it).
+// -march=native: the build must run on machines without it). The AVX-512 clone
+// is x86-64-v4 (AVX-512 F, VL, BW, DQ, CD), not bare avx512f: the loops work on
+// 256-bit vectors, which only VL lets use all 32 vector registers (with
+// avx512f alone they had 16 and spilled; 6 % of the impact step).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define SPLAT_TARGET_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#define SPLAT_TARGET_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #else
 #define SPLAT_TARGET_CLONES
 #endif
@@ -127,11 +131,12 @@ struct Mirrors {
 // result does not depend on the thread that computes it. Lanes past the end
 // of a particle's list hold the particle itself with zero pair weights: all
 // their contributions are exact zeros.
-// GCC 12 reports vectors assigned before any use as maybe-uninitialized in
-// the non-AVX clone (split into SSE2 halves); the warning is off for the
+// GCC 12 reports vectors assigned before any use as (maybe-)uninitialized
+// in the non-AVX clone (split into SSE2 halves); the warnings are off for the
 // vector code only.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 constexpr int lanes = 4;
 using vd = double __attribute__((vector_size(lanes * sizeof(double))));
 using vmask = long __attribute__((vector_size(lanes * sizeof(double))));
@@ -149,6 +154,27 @@ inline void gather(vd& out, const double* __restrict p, const std::size_t* j, st
   static_assert(lanes == 4);
   out = vd{p[stride * j[0] + offset], p[stride * j[1] + offset], p[stride * j[2] + offset],
            p[stride * j[3] + offset]};
+}
+
+// out0[l] = p[stride j[l] + offset] and out1[l] = p[stride j[l] + offset + 1]:
+// two neighbouring fields of each lane's record in one 16-byte load per lane
+// and two in-lane shuffles (a 4x2 transpose), against four scalar loads and
+// three shuffles for each field through gather(). The values are the same.
+inline void gather2(vd& out0, vd& out1, const double* __restrict p, const std::size_t* j,
+                    std::size_t stride, std::size_t offset) {
+  using v2d = double __attribute__((vector_size(2 * sizeof(double))));
+  static_assert(lanes == 4);
+  v2d a0, a1, a2, a3;
+  std::memcpy(&a0, p + stride * j[0] + offset, sizeof(v2d));
+  std::memcpy(&a1, p + stride * j[1] + offset, sizeof(v2d));
+  std::memcpy(&a2, p + stride * j[2] + offset, sizeof(v2d));
+  std::memcpy(&a3, p + stride * j[3] + offset, sizeof(v2d));
+  // Written out element by element (not as arrays and loops), which GCC 12
+  // compiles to two inserts and two unpacks instead of a trip through memory.
+  const vd t0 = __builtin_shufflevector(a0, a2, 0, 1, 2, 3);  // lanes 0 and 2
+  const vd t1 = __builtin_shufflevector(a1, a3, 0, 1, 2, 3);  // lanes 1 and 3
+  out0 = __builtin_shufflevector(t0, t1, 0, 4, 2, 6);
+  out1 = __builtin_shufflevector(t0, t1, 1, 5, 3, 7);
 }
 
 // The vector of the lanes of an array (an initialiser: assigning through a
@@ -197,6 +223,18 @@ struct PairLanes {
 
 template <bool with_mirrors, bool with_stabilisers>
 inline void load_lanes(const SphBody& b, std::size_t i, int k0, int end, PairLanes& p) {
+  if (k0 + lanes <= end) {  // a full chunk (all but the last of a list): no padding
+    const std::size_t k = static_cast<std::size_t>(k0);
+    for (int l = 0; l < lanes; ++l) {
+      const std::size_t kl = k + static_cast<std::size_t>(l);
+      p.j[l] = static_cast<std::size_t>(b.pairs.j[kl]);
+      p.op[l] = with_mirrors ? b.pairs.op[kl] : 0;
+      p.t[l] = b.pair_t[kl];
+      p.w[l] = with_stabilisers ? static_cast<double>(b.pair_hg[kl]) : 0.0;
+      p.dw[l] = with_stabilisers ? static_cast<double>(b.pair_visc[kl]) : 0.0;
+    }
+    return;
+  }
   for (int l = 0; l < lanes; ++l) {
     const int k = k0 + l;
     const bool live = k < end;
@@ -235,11 +273,15 @@ SPLAT_TARGET_CLONES void deformation(const SphBody& b, const NodeSet& nodes, con
     load_lanes<with_mirrors, false>(b, i, k0, end, p);
     const vd t = SPLAT_LANES(p.t);
     vd g[3], dx[3], dv[3];
+    vd Xg[3], xg[3], vg[3];
+    gather2(Xg[0], Xg[1], X, p.j, 3, 0);
+    gather(Xg[2], X, p.j, 3, 2);
+    gather2(xg[0], xg[1], x, p.j, 3, 0);
+    gather(xg[2], x, p.j, 3, 2);
+    gather2(vg[0], vg[1], v, p.j, 3, 0);
+    gather(vg[2], v, p.j, 3, 2);
     for (int a = 0; a < 3; ++a) {
-      vd Xj, xj, vj;
-      gather(Xj, X, p.j, 3, static_cast<std::size_t>(a));
-      gather(xj, x, p.j, 3, static_cast<std::size_t>(a));
-      gather(vj, v, p.j, 3, static_cast<std::size_t>(a));
+      vd Xj = Xg[a], xj = xg[a], vj = vg[a];
       if constexpr (with_mirrors) {
         double sg_l[lanes], sh_l[lanes];
         for (int l = 0; l < lanes; ++l) {
@@ -307,13 +349,11 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
   const double* __restrict X = b.X.data()->data();
   const double* __restrict x = nodes.x[base].data();
   const double* __restrict v = nodes.v[base].data();
-  const double* __restrict PB = b.PB.data()->data();
-  const double* __restrict Fm = b.F.data()->data();
-  const double* __restrict h = b.h.data();
-  const double* __restrict rho = b.rho.data();
-  const double* __restrict E_hg = b.E_hg.data();
-  const std::uint8_t* __restrict active = b.active.data();
-  const double* Fi = Fm + 9 * i;
+  // The neighbours' records: field f of neighbour j at R[stride j + f].
+  const double* __restrict R = b.record.data()->PB;
+  constexpr std::size_t stride = sizeof(SphPairRecord) / sizeof(double);
+  const SphPairRecord& rec_i = b.record[i];
+  const double* Fi = rec_i.F;
   vd Xi[3], xi[3], vi[3];
   for (int a = 0; a < 3; ++a) {
     broadcast(Xi[a], X[3 * i + a]);
@@ -322,9 +362,9 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
   }
   const double Vi = b.volume_ref[i];
   vd h_i, rho_i, E_i, zero = {}, inf;
-  broadcast(h_i, h[i]);
-  broadcast(rho_i, rho[i]);
-  broadcast(E_i, E_hg[i]);
+  broadcast(h_i, rec_i.h);
+  broadcast(rho_i, rec_i.rho);
+  broadcast(E_i, rec_i.E_hg);
   broadcast(inf, infinity);
   const double mi = nodes.mass[base + i];
   // a = sum_j V_j g_ij, fp = sum_j S P_j B_j S V_j g_ij, then
@@ -345,12 +385,16 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
     }
     const vd sg[3] = {SPLAT_LANES(sg_l[0]), SPLAT_LANES(sg_l[1]), SPLAT_LANES(sg_l[2])};
     vd dX[3], g[3], Sg[3], Sd[3], xij[3], vij[3];
+    vd Xg[3], xg[3], vg[3];
+    gather2(Xg[0], Xg[1], X, p.j, 3, 0);
+    gather(Xg[2], X, p.j, 3, 2);
+    gather2(xg[0], xg[1], x, p.j, 3, 0);
+    gather(xg[2], x, p.j, 3, 2);
+    gather2(vg[0], vg[1], v, p.j, 3, 0);
+    gather(vg[2], v, p.j, 3, 2);
     for (int a = 0; a < 3; ++a) {
       // op(X_j) - X_i, recomputed (storing it cost 24 B per pair).
-      vd Xj, xj, vj;
-      gather(Xj, X, p.j, 3, static_cast<std::size_t>(a));
-      gather(xj, x, p.j, 3, static_cast<std::size_t>(a));
-      gather(vj, v, p.j, 3, static_cast<std::size_t>(a));
+      vd Xj = Xg[a], xj = xg[a], vj = vg[a];
       if constexpr (with_mirrors) {
         const vd sh = SPLAT_LANES(sh_l[a]);
         Xj = sg[a] * Xj + sh;
@@ -369,18 +413,17 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
       xij[a] = xj - xi[a];
       vij[a] = vj - vi[a];
     }
+    // The neighbours' records, two fields at a time: PB_j (0-8) and F_j
+    // (9-17), column-major (element (r, c) at 3 c + r), h, rho, E_hg and
+    // activity (18-21).
+    vd rec[22];
+    for (std::size_t f = 0; f < 22; f += 2) gather2(rec[f], rec[f + 1], R, p.j, stride, f);
+    const vd* PBj = rec;
+    const vd* Fj = rec + 9;
     vd pg[3], Fd[3], Fid[3];
     for (int r = 0; r < 3; ++r) {
-      const std::size_t ur = static_cast<std::size_t>(r);
-      vd c0, c1, c2;
-      gather(c0, PB, p.j, 9, ur);
-      gather(c1, PB, p.j, 9, 3 + ur);
-      gather(c2, PB, p.j, 9, 6 + ur);
-      pg[r] = c0 * Sg[0] + c1 * Sg[1] + c2 * Sg[2];
-      gather(c0, Fm, p.j, 9, ur);
-      gather(c1, Fm, p.j, 9, 3 + ur);
-      gather(c2, Fm, p.j, 9, 6 + ur);
-      Fd[r] = c0 * Sd[0] + c1 * Sd[1] + c2 * Sd[2];  // S F_j S dX = S (F_j (S dX))
+      pg[r] = PBj[r] * Sg[0] + PBj[3 + r] * Sg[1] + PBj[6 + r] * Sg[2];
+      Fd[r] = Fj[r] * Sd[0] + Fj[3 + r] * Sd[1] + Fj[6 + r] * Sd[2];  // S F_j S dX = S (F_j (S dX))
       Fid[r] = Fi[r] * dX[0] + Fi[3 + r] * dX[1] + Fi[6 + r] * dX[2];
     }
     for (int a = 0; a < 3; ++a) {
@@ -394,9 +437,7 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
 
     const vd r_sq = xij[0] * xij[0] + xij[1] * xij[1] + xij[2] * xij[2];
     static_assert(lanes == 4);
-    const vmask act = {active[p.j[0]] != 0 ? -1L : 0L, active[p.j[1]] != 0 ? -1L : 0L,
-                       active[p.j[2]] != 0 ? -1L : 0L, active[p.j[3]] != 0 ? -1L : 0L};
-    const vmask valid = act & (r_sq > zero);
+    const vmask valid = (rec[21] != zero) & (r_sq > zero);  // active, not coincident
     vd r;
     sqrt_lanes(r, r_sq);
     const vd inv_r = valid ? 1.0 / r : zero;
@@ -407,10 +448,7 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
     // division: q = 1 / (d1 d2), mu = h vx / d1, Pi = (...) / d2.
     const vd vx_any = vij[0] * xij[0] + vij[1] * xij[1] + vij[2] * xij[2];
     const vd vx = zero < vx_any ? zero : vx_any;
-    vd h_j, rho_j, E_j;
-    gather(h_j, h, p.j, 1, 0);
-    gather(rho_j, rho, p.j, 1, 0);
-    gather(E_j, E_hg, p.j, 1, 0);
+    const vd h_j = rec[18], rho_j = rec[19], E_j = rec[20];
     const vd hij = 0.5 * (h_i + h_j);
     const vd d1 = r_sq + 0.01 * hij * hij;
     const vd d2 = 0.5 * (rho_i + rho_j);
@@ -442,7 +480,7 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
   PairSums out;
   const Vec3 a_i(sums[0][0], sums[0][1], sums[0][2]);
   const Vec3 fp_i(sums[0][3], sums[1][0], sums[1][1]);
-  out.f_stress = Vi * (b.PB[i] * a_i + fp_i);
+  out.f_stress = Vi * (b.PB(i) * a_i + fp_i);
   out.f_visc = Vec3(sums[1][2], sums[1][3], sums[2][0]);
   out.f_hg = Vec3(sums[2][1], sums[2][2], sums[2][3]);
   double r_sq = r_sq_min[0], mu_max = max_mu[0];
@@ -554,7 +592,7 @@ SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const
   b.F_ref.assign(n, Mat3::Identity());
   b.h.assign(n, h0);
   b.state.resize(n);
-  b.PB.assign(n, Mat3::Zero());
+  b.record.assign(n, SphPairRecord{});
   b.dt_bound.assign(n, infinity);
   b.active.assign(n, 1);
   for (std::size_t i = 0; i < n; ++i) {
@@ -643,8 +681,6 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   // the flow stress once plastic).
   const double E = mat.elastic.E;
   const bool energy_law = b.switches.damage && dm.evolution == DamageEvolution::fracture_energy;
-  b.rho.resize(n);
-  b.E_hg.resize(n);
   for_block_ranges(n, blocks, [&](std::size_t first, std::size_t last, BlockSums& s) {
     int index[block_size];
     Mat3 d_eps[block_size];
@@ -689,13 +725,18 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     for (std::size_t i = first; i < last; ++i) {
       const double detF = det[i - first];
       const PointState& st = b.state[i];
-      b.rho[i] = mat.density / (b.J_ref[i] * std::max(detF, 1e-12));
-      b.E_hg[i] = st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
+      SphPairRecord& rec = b.record[i];
+      rec.h = b.h[i];
+      rec.rho = mat.density / (b.J_ref[i] * std::max(detF, 1e-12));
+      rec.E_hg = st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
+      rec.active = b.active[i] ? 1.0 : 0.0;
+      Eigen::Map<Mat3>(rec.F) = b.F[i];
+      Eigen::Map<Mat3> PB(rec.PB);
       if (b.active[i] && detF > 0.0) {
         // det(F) F^-T is the cofactor matrix of F.
-        b.PB[i].noalias() = st.cauchy() * (cofactor(b.F[i]) * b.B[i]);
+        PB.noalias() = st.cauchy() * (cofactor(b.F[i]) * b.B[i]);
       } else {
-        b.PB[i].setZero();
+        PB.setZero();
       }
     }
   });
@@ -707,7 +748,8 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
   for (std::size_t i = 0; i < n; ++i) {
     if (failed[i]) {
       b.active[i] = 0;
-      b.PB[i].setZero();
+      b.record[i].active = 0.0;
+      Eigen::Map<Mat3>(b.record[i].PB).setZero();
       result.deactivated.push_back(static_cast<int>(i));
       result.deactivated_energy += b.volume0[i] * b.state[i].e;
       b.update_pending = true;

@@ -97,6 +97,22 @@ struct SphSettings {
   bool deactivate_failed = false;           // particles at D_max stop carrying stress
 };
 
+// What the pair loop reads of each neighbour, in one record of three cache
+// lines written by the material update every step: the pair loop finds all of
+// it from one address per neighbour and loads it two fields at a time
+// (separate arrays cost one address per array and neighbour, more than the
+// registers hold).
+struct alignas(64) SphPairRecord {
+  double PB[9];     // first Piola-Kirchhoff stress times B_i, column-major, Pa
+  double F[9];      // deformation gradient (copy of SphBody::F), column-major, -
+  double h;         // smoothing length, m
+  double rho;       // current density, kg/m^3
+  double E_hg;      // hourglass modulus, Pa
+  double active;    // 1 active, 0 deactivated
+  double spare[2];  // padding to 192 bytes
+};
+static_assert(sizeof(SphPairRecord) == 192);
+
 struct SphBody {
   std::string name;
   Material material;
@@ -127,18 +143,18 @@ struct SphBody {
   bool update_pending = false;       // forces an update at the next call
 
   // Every step.
-  std::vector<PointState> state;     // material state
-  std::vector<Mat3> F;               // deformation gradient from the reference, -
-  std::vector<Mat3> Fdot;            // its rate, 1/s
-  std::vector<Mat3> PB;              // first Piola-Kirchhoff stress times B_i, Pa
-  std::vector<double> dt_bound;      // per-particle time-step bound, s
-  std::vector<double> rho;           // current density, kg/m^3
-  std::vector<double> E_hg;          // hourglass modulus, Pa
-  std::vector<std::uint8_t> active;  // 0 once deactivated
-  std::vector<Vec3> f_visc;          // artificial-viscosity force of the last call, N
-  std::vector<Vec3> f_hg;            // hourglass force of the last call, N
+  std::vector<PointState> state;      // material state
+  std::vector<Mat3> F;                // deformation gradient from the reference, -
+  std::vector<Mat3> Fdot;             // its rate, 1/s
+  std::vector<SphPairRecord> record;  // P B, F, h, rho, hourglass modulus, activity
+  std::vector<double> dt_bound;       // per-particle time-step bound, s
+  std::vector<std::uint8_t> active;   // 0 once deactivated
+  std::vector<Vec3> f_visc;           // artificial-viscosity force of the last call, N
+  std::vector<Vec3> f_hg;             // hourglass force of the last call, N
 
   std::size_t size() const { return node_end - node_begin; }
+  // P_i B_i of the last call, Pa.
+  Eigen::Map<const Mat3> PB(std::size_t i) const { return Eigen::Map<const Mat3>(record[i].PB); }
 };
 
 struct SphStepResult {

@@ -374,7 +374,7 @@ TEST(SphDamage, FailedParticleIsDeactivatedOnlyWhenAsked) {
     }
     ASSERT_EQ(r.deactivated, std::vector<int>{failed});
     EXPECT_EQ(r.deactivated_energy, body.volume0[failed] * body.state[failed].e);
-    EXPECT_EQ(body.PB[failed].norm(), 0.0);
+    EXPECT_EQ(body.PB(failed).norm(), 0.0);
     const SphStepResult next = sph_internal_forces(body, nodes, 1e-9);
     EXPECT_TRUE(next.reference_updated);
     for (std::size_t k = 0; k < body.pairs.num_pairs(); ++k) EXPECT_NE(body.pairs.j[k], failed);
