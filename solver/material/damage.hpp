@@ -27,11 +27,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/common/types.hpp"
 #include "solver/material/material.hpp"
 
 namespace splat {
 
 inline constexpr double min_failure_strain = 1e-6;  // -
+
+// Largest shear stress (sigma_1 - sigma_3) / 2 of a symmetric stress, Pa.
+double max_shear_stress(const Mat3& sigma);
 
 inline double jc_failure_strain(const JohnsonCookFailureParams& d, const JohnsonCookParams& jc,
                                 bool rate_term, bool thermal_term, double triaxiality,
