@@ -82,15 +82,6 @@ void for_blocks(std::size_t n, std::vector<BlockSums>& blocks, Body&& body) {
   });
 }
 
-// The cofactor matrix det(F) F^-T of F.
-Mat3 cofactor(const Mat3& F) {
-  Mat3 c;
-  c.col(0) = F.col(1).cross(F.col(2));
-  c.col(1) = F.col(2).cross(F.col(0));
-  c.col(2) = F.col(0).cross(F.col(1));
-  return c;
-}
-
 void check_settings(const SphSettings& s) {
   const auto bad = [](const char* what) {
     throw std::invalid_argument(std::string("SPH settings: ") + what);
@@ -492,6 +483,174 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
   out.max_mu = mu_max;
   return out;
 }
+
+// Lanes of four 3x3 matrices: out[e][l] = p[l][e] for the 9 entries
+// (column-major: (r, c) at 3 c + r) of lane l's matrix at p[l], two entries
+// per 16-byte load as in gather2.
+inline void gather_mat3(vd out[9], const double* const p[lanes]) {
+  using v2d = double __attribute__((vector_size(2 * sizeof(double))));
+  static_assert(lanes == 4);
+  for (std::size_t e = 0; e < 8; e += 2) {
+    v2d a0, a1, a2, a3;
+    std::memcpy(&a0, p[0] + e, sizeof(v2d));
+    std::memcpy(&a1, p[1] + e, sizeof(v2d));
+    std::memcpy(&a2, p[2] + e, sizeof(v2d));
+    std::memcpy(&a3, p[3] + e, sizeof(v2d));
+    const vd t0 = __builtin_shufflevector(a0, a2, 0, 1, 2, 3);
+    const vd t1 = __builtin_shufflevector(a1, a3, 0, 1, 2, 3);
+    out[e] = __builtin_shufflevector(t0, t1, 0, 4, 2, 6);
+    out[e + 1] = __builtin_shufflevector(t0, t1, 1, 5, 3, 7);
+  }
+  out[8] = vd{p[0][8], p[1][8], p[2][8], p[3][8]};
+}
+
+// C = cof(M) = det(M) M^-T in lanes, column-major: its columns are the cross
+// products of M's columns 1 x 2, 2 x 0 and 0 x 1.
+inline void cofactor_lanes(const vd M[9], vd C[9]) {
+  C[0] = M[4] * M[8] - M[5] * M[7];
+  C[1] = M[5] * M[6] - M[3] * M[8];
+  C[2] = M[3] * M[7] - M[4] * M[6];
+  C[3] = M[7] * M[2] - M[8] * M[1];
+  C[4] = M[8] * M[0] - M[6] * M[2];
+  C[5] = M[6] * M[1] - M[7] * M[0];
+  C[6] = M[1] * M[5] - M[2] * M[4];
+  C[7] = M[2] * M[3] - M[0] * M[5];
+  C[8] = M[0] * M[4] - M[1] * M[3];
+}
+
+// The lanes of particles k0 .. k0 + 3 of a block ending at `last` (the last
+// particle repeated past it) and which of them to store.
+inline void block_lanes(std::size_t k0, std::size_t last, std::size_t idx[lanes],
+                        bool real[lanes]) {
+  for (int l = 0; l < lanes; ++l) {
+    const std::size_t k = k0 + static_cast<std::size_t>(l);
+    real[l] = k < last;
+    idx[l] = real[l] ? k : last - 1;
+  }
+}
+
+// Kinematics of particles first .. last - 1, four at a time: det F of each,
+// and for active particles with det F > 0 (when dt > 0) the strain increment
+// dt D and the Hughes-Winget rotation of the deviatoric stress, from
+// L = Fdot F_mid^-1 with F_mid = F - dt/2 Fdot (cofactors: F_mid^-1 =
+// cof(F_mid)^T / det F_mid). Indexed from `first`: det[i - first],
+// d_eps[i - first].
+SPLAT_TARGET_CLONES void block_kinematics(SphBody& b, std::size_t first, std::size_t last,
+                                          double dt, double* det, Mat3* d_eps) {
+  for (std::size_t k0 = first; k0 < last; k0 += lanes) {
+    std::size_t idx[lanes];
+    bool real[lanes];
+    block_lanes(k0, last, idx, real);
+    const double* Fp[lanes] = {b.F[idx[0]].data(), b.F[idx[1]].data(), b.F[idx[2]].data(),
+                               b.F[idx[3]].data()};
+    vd F[9], CF[9];
+    gather_mat3(F, Fp);
+    cofactor_lanes(F, CF);
+    const vd detF = F[0] * CF[0] + F[1] * CF[1] + F[2] * CF[2];
+    bool store[lanes];
+    for (int l = 0; l < lanes; ++l) {
+      if (real[l]) det[k0 + static_cast<std::size_t>(l) - first] = detF[l];
+      store[l] = real[l] && b.active[idx[l]] && detF[l] > 0.0;
+    }
+    if (!(dt > 0.0) || !(store[0] || store[1] || store[2] || store[3])) continue;
+    const double* Fdp[lanes] = {b.Fdot[idx[0]].data(), b.Fdot[idx[1]].data(), b.Fdot[idx[2]].data(),
+                                b.Fdot[idx[3]].data()};
+    vd Fd[9], M[9], CM[9];
+    gather_mat3(Fd, Fdp);
+    for (int e = 0; e < 9; ++e) M[e] = F[e] - (0.5 * dt) * Fd[e];
+    cofactor_lanes(M, CM);
+    const vd inv_det = 1.0 / (M[0] * CM[0] + M[1] * CM[1] + M[2] * CM[2]);
+    // L(i, j) = sum_k Fdot(i, k) cof(j, k) / det F_mid, at 3 j + i.
+    vd L[9];
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        L[3 * j + i] = (Fd[i] * CM[j] + Fd[3 + i] * CM[3 + j] + Fd[6 + i] * CM[6 + j]) * inv_det;
+      }
+    }
+    // Hughes-Winget rotation (I - W dt/2)^-1 (I + W dt/2) in closed form
+    // (hughes_winget_rotation): a = dt/2 (W21, W02, W10), W = (L - L^T) / 2.
+    const double h = 0.5 * dt;
+    const vd a0 = h * (0.5 * (L[5] - L[7])), a1 = h * (0.5 * (L[6] - L[2])),
+             a2 = h * (0.5 * (L[1] - L[3]));
+    const vd a_sq = a0 * a0 + a1 * a1 + a2 * a2;
+    const vd c = 2.0 / (1.0 + a_sq);
+    const vd d = 1.0 - c * a_sq;
+    const vd Q[3][3] = {{d + c * a0 * a0, c * (a0 * a1 - a2), c * (a0 * a2 + a1)},
+                        {c * (a0 * a1 + a2), d + c * a1 * a1, c * (a1 * a2 - a0)},
+                        {c * (a0 * a2 - a1), c * (a1 * a2 + a0), d + c * a2 * a2}};
+    const double* Sp[lanes] = {b.state[idx[0]].s.data(), b.state[idx[1]].s.data(),
+                               b.state[idx[2]].s.data(), b.state[idx[3]].s.data()};
+    vd S[9];
+    gather_mat3(S, Sp);
+    // Q S Q^T, the six distinct entries (rotate_symmetric).
+    vd QS[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        QS[i][k] = Q[i][0] * S[3 * k] + Q[i][1] * S[3 * k + 1] + Q[i][2] * S[3 * k + 2];
+      }
+    }
+    vd R[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = i; j < 3; ++j) {
+        R[i][j] = QS[i][0] * Q[j][0] + QS[i][1] * Q[j][1] + QS[i][2] * Q[j][2];
+      }
+    }
+    for (int l = 0; l < lanes; ++l) {
+      if (!store[l]) continue;
+      Mat3& st_s = b.state[idx[l]].s;
+      Mat3& de = d_eps[idx[l] - first];
+      for (int i = 0; i < 3; ++i) {
+        for (int j = i; j < 3; ++j) {
+          st_s(i, j) = st_s(j, i) = R[i][j][l];
+          de(i, j) = de(j, i) = dt * (0.5 * (L[3 * j + i][l] + L[3 * i + j][l]));
+        }
+      }
+    }
+  }
+}
+
+// P B = sigma cof(F) B of particles first .. last - 1 into their records,
+// four at a time: zero for inactive particles and det F <= 0 (det[i - first]).
+SPLAT_TARGET_CLONES void block_stress(SphBody& b, std::size_t first, std::size_t last,
+                                      const double* det) {
+  for (std::size_t k0 = first; k0 < last; k0 += lanes) {
+    std::size_t idx[lanes];
+    bool real[lanes];
+    block_lanes(k0, last, idx, real);
+    const double* Fp[lanes] = {b.F[idx[0]].data(), b.F[idx[1]].data(), b.F[idx[2]].data(),
+                               b.F[idx[3]].data()};
+    const double* Bp[lanes] = {b.B[idx[0]].data(), b.B[idx[1]].data(), b.B[idx[2]].data(),
+                               b.B[idx[3]].data()};
+    const double* Sp[lanes] = {b.state[idx[0]].s.data(), b.state[idx[1]].s.data(),
+                               b.state[idx[2]].s.data(), b.state[idx[3]].s.data()};
+    vd F[9], CF[9], Bm[9], sig[9];
+    gather_mat3(F, Fp);
+    gather_mat3(Bm, Bp);
+    gather_mat3(sig, Sp);
+    cofactor_lanes(F, CF);
+    const vd p = {b.state[idx[0]].p, b.state[idx[1]].p, b.state[idx[2]].p, b.state[idx[3]].p};
+    sig[0] -= p, sig[4] -= p, sig[8] -= p;  // sigma = s - p I
+    // C = cof(F) B, then P B = sigma C; (i, j) at 3 j + i.
+    vd C[9], PB[9];
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        C[3 * j + i] = CF[i] * Bm[3 * j] + CF[3 + i] * Bm[3 * j + 1] + CF[6 + i] * Bm[3 * j + 2];
+      }
+    }
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        PB[3 * j + i] = sig[i] * C[3 * j] + sig[3 + i] * C[3 * j + 1] + sig[6 + i] * C[3 * j + 2];
+      }
+    }
+    for (int l = 0; l < lanes; ++l) {
+      if (!real[l]) continue;
+      const std::size_t i = idx[l];
+      const bool stressed = b.active[i] && det[i - first] > 0.0;
+      double* out = b.record[i].PB;
+      for (int e = 0; e < 9; ++e) out[e] = stressed ? PB[e][l] : 0.0;
+    }
+  }
+}
 #pragma GCC diagnostic pop
 }  // namespace
 
@@ -687,24 +846,19 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     double J_new[block_size], length[block_size], det[block_size];
     PointUpdateResult out[block_size];
     std::size_t count = 0;
+    // In lanes: det F, the rotated deviator and dt D (block_kinematics).
+    Mat3 d_eps_block[block_size];
+    block_kinematics(b, first, last, dt, det, d_eps_block);
     for (std::size_t i = first; i < last; ++i) {
-      const Mat3& F = b.F[i];
-      const double detF = F.determinant();
-      det[i - first] = detF;
+      const double detF = det[i - first];
       if (!b.active[i]) continue;
       if (!(detF > 0.0)) {
         ++s.inverted;
         continue;
       }
       if (dt > 0.0) {
-        const Mat3 F_mid = F - 0.5 * dt * b.Fdot[i];
-        const Mat3 L = b.Fdot[i] * F_mid.inverse();
-        const Mat3 D = 0.5 * (L + L.transpose());
-        const Mat3 W = 0.5 * (L - L.transpose());
-        PointState& st = b.state[i];
-        st.s = rotate_symmetric(hughes_winget_rotation(W, dt), st.s);
         index[count] = static_cast<int>(i);
-        d_eps[count] = dt * D;
+        d_eps[count] = d_eps_block[i - first];
         J_new[count] = b.J_ref[i] * detF;
         // Only the fracture-energy damage law reads the length; other
         // scenes skip its cube root (about 1 % of the step).
@@ -722,6 +876,7 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       const std::size_t i = static_cast<std::size_t>(index[k]);
       if (can_fail && b.state[i].D >= dm.D_max - 1e-12) failed[i] = 1;
     }
+    block_stress(b, first, last, det);  // P B = sigma det(F) F^-T B, in lanes
     for (std::size_t i = first; i < last; ++i) {
       const double detF = det[i - first];
       const PointState& st = b.state[i];
@@ -731,13 +886,6 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       rec.E_hg = st.eps_p > 1e-3 ? st.sigma_y : (1.0 - st.D) * E;
       rec.active = b.active[i] ? 1.0 : 0.0;
       Eigen::Map<Mat3>(rec.F) = b.F[i];
-      Eigen::Map<Mat3> PB(rec.PB);
-      if (b.active[i] && detF > 0.0) {
-        // det(F) F^-T is the cofactor matrix of F.
-        PB.noalias() = st.cauchy() * (cofactor(b.F[i]) * b.B[i]);
-      } else {
-        PB.setZero();
-      }
     }
   });
   for (const BlockSums& s : blocks) {
