@@ -168,6 +168,12 @@ inline void gather2(vd& out0, vd& out1, const double* __restrict p, const std::s
   out1 = __builtin_shufflevector(t0, t1, 1, 5, 3, 7);
 }
 
+// out[a][l] = p[3 j[l] + a]: the lanes of an array of 3-vectors.
+inline void gather_vec3(vd out[3], const double* __restrict p, const std::size_t* j) {
+  gather2(out[0], out[1], p, j, 3, 0);
+  gather(out[2], p, j, 3, 2);
+}
+
 // The vector of the lanes of an array (an initialiser: assigning through a
 // reference draws false -Wmaybe-uninitialized warnings from GCC 12).
 #define SPLAT_LANES(a)             \
@@ -265,12 +271,9 @@ SPLAT_TARGET_CLONES void deformation(const SphBody& b, const NodeSet& nodes, con
     const vd t = SPLAT_LANES(p.t);
     vd g[3], dx[3], dv[3];
     vd Xg[3], xg[3], vg[3];
-    gather2(Xg[0], Xg[1], X, p.j, 3, 0);
-    gather(Xg[2], X, p.j, 3, 2);
-    gather2(xg[0], xg[1], x, p.j, 3, 0);
-    gather(xg[2], x, p.j, 3, 2);
-    gather2(vg[0], vg[1], v, p.j, 3, 0);
-    gather(vg[2], v, p.j, 3, 2);
+    gather_vec3(Xg, X, p.j);
+    gather_vec3(xg, x, p.j);
+    gather_vec3(vg, v, p.j);
     for (int a = 0; a < 3; ++a) {
       vd Xj = Xg[a], xj = xg[a], vj = vg[a];
       if constexpr (with_mirrors) {
@@ -377,12 +380,9 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
     const vd sg[3] = {SPLAT_LANES(sg_l[0]), SPLAT_LANES(sg_l[1]), SPLAT_LANES(sg_l[2])};
     vd dX[3], g[3], Sg[3], Sd[3], xij[3], vij[3];
     vd Xg[3], xg[3], vg[3];
-    gather2(Xg[0], Xg[1], X, p.j, 3, 0);
-    gather(Xg[2], X, p.j, 3, 2);
-    gather2(xg[0], xg[1], x, p.j, 3, 0);
-    gather(xg[2], x, p.j, 3, 2);
-    gather2(vg[0], vg[1], v, p.j, 3, 0);
-    gather(vg[2], v, p.j, 3, 2);
+    gather_vec3(Xg, X, p.j);
+    gather_vec3(xg, x, p.j);
+    gather_vec3(vg, v, p.j);
     for (int a = 0; a < 3; ++a) {
       // op(X_j) - X_i, recomputed (storing it cost 24 B per pair).
       vd Xj = Xg[a], xj = xg[a], vj = vg[a];
