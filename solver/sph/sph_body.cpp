@@ -504,6 +504,12 @@ inline void gather_mat3(vd out[9], const double* const p[lanes]) {
   out[8] = vd{p[0][8], p[1][8], p[2][8], p[3][8]};
 }
 
+// The lanes of a[idx[0..3]] (gather_mat3 of their data).
+inline void gather_mat3(vd out[9], const std::vector<Mat3>& a, const std::size_t idx[lanes]) {
+  const double* p[lanes] = {a[idx[0]].data(), a[idx[1]].data(), a[idx[2]].data(), a[idx[3]].data()};
+  gather_mat3(out, p);
+}
+
 // C = cof(M) = det(M) M^-T in lanes, column-major: its columns are the cross
 // products of M's columns 1 x 2, 2 x 0 and 0 x 1.
 inline void cofactor_lanes(const vd M[9], vd C[9]) {
@@ -541,10 +547,8 @@ SPLAT_TARGET_CLONES void block_kinematics(SphBody& b, std::size_t first, std::si
     std::size_t idx[lanes];
     bool real[lanes];
     block_lanes(k0, last, idx, real);
-    const double* Fp[lanes] = {b.F[idx[0]].data(), b.F[idx[1]].data(), b.F[idx[2]].data(),
-                               b.F[idx[3]].data()};
     vd F[9], CF[9];
-    gather_mat3(F, Fp);
+    gather_mat3(F, b.F, idx);
     cofactor_lanes(F, CF);
     const vd detF = F[0] * CF[0] + F[1] * CF[1] + F[2] * CF[2];
     bool store[lanes];
@@ -553,10 +557,8 @@ SPLAT_TARGET_CLONES void block_kinematics(SphBody& b, std::size_t first, std::si
       store[l] = real[l] && b.active[idx[l]] && detF[l] > 0.0;
     }
     if (!(dt > 0.0) || !(store[0] || store[1] || store[2] || store[3])) continue;
-    const double* Fdp[lanes] = {b.Fdot[idx[0]].data(), b.Fdot[idx[1]].data(), b.Fdot[idx[2]].data(),
-                                b.Fdot[idx[3]].data()};
     vd Fd[9], M[9], CM[9];
-    gather_mat3(Fd, Fdp);
+    gather_mat3(Fd, b.Fdot, idx);
     for (int e = 0; e < 9; ++e) M[e] = F[e] - (0.5 * dt) * Fd[e];
     cofactor_lanes(M, CM);
     const vd inv_det = 1.0 / (M[0] * CM[0] + M[1] * CM[1] + M[2] * CM[2]);
@@ -617,15 +619,11 @@ SPLAT_TARGET_CLONES void block_stress(SphBody& b, std::size_t first, std::size_t
     std::size_t idx[lanes];
     bool real[lanes];
     block_lanes(k0, last, idx, real);
-    const double* Fp[lanes] = {b.F[idx[0]].data(), b.F[idx[1]].data(), b.F[idx[2]].data(),
-                               b.F[idx[3]].data()};
-    const double* Bp[lanes] = {b.B[idx[0]].data(), b.B[idx[1]].data(), b.B[idx[2]].data(),
-                               b.B[idx[3]].data()};
     const double* Sp[lanes] = {b.state[idx[0]].s.data(), b.state[idx[1]].s.data(),
                                b.state[idx[2]].s.data(), b.state[idx[3]].s.data()};
     vd F[9], CF[9], Bm[9], sig[9];
-    gather_mat3(F, Fp);
-    gather_mat3(Bm, Bp);
+    gather_mat3(F, b.F, idx);
+    gather_mat3(Bm, b.B, idx);
     gather_mat3(sig, Sp);
     cofactor_lanes(F, CF);
     const vd p = {b.state[idx[0]].p, b.state[idx[1]].p, b.state[idx[2]].p, b.state[idx[3]].p};
