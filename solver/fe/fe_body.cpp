@@ -148,39 +148,8 @@ int global_node(const std::string& name, std::size_t e, int local, std::size_t n
                               " has non-positive volume " + std::to_string(volume));
 }
 
-// hughes_winget_rotation and rotate_symmetric (fe_body.hpp), same arithmetic,
-// in scalars or lanes (simd_lanes.hpp) for the element loop: Eigen's comma
-// initialiser and 3x3 products mixed scalar stores with packet loads of the
-// same memory here (store-forwarding stalls). (w21, w02, w10) are W(2,1),
-// W(0,2), W(1,0).
-template <class T>
-SPLAT_LANE_INLINE void hughes_winget_rotation_cm(const T& w21, const T& w02, const T& w10,
-                                                 double dt, T Q[3][3]) {
-  const double h = 0.5 * dt;
-  const T a0 = h * w21, a1 = h * w02, a2 = h * w10;
-  const T a_sq = a0 * a0 + a1 * a1 + a2 * a2;
-  const T c = 2.0 / (1.0 + a_sq);
-  const T d = 1.0 - c * a_sq;
-  Q[0][0] = d + c * a0 * a0, Q[0][1] = c * (a0 * a1 - a2), Q[0][2] = c * (a0 * a2 + a1);
-  Q[1][0] = c * (a0 * a1 + a2), Q[1][1] = d + c * a1 * a1, Q[1][2] = c * (a1 * a2 - a0);
-  Q[2][0] = c * (a0 * a2 - a1), Q[2][1] = c * (a1 * a2 + a0), Q[2][2] = d + c * a2 * a2;
-}
-
-// S <- Q S Q^T for a symmetric S (the six distinct entries, exactly symmetric).
-template <class T>
-SPLAT_LANE_INLINE void rotate_symmetric_cm(const T Q[3][3], T S[3][3]) {
-  T M[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) M[i][k] = Q[i][0] * S[0][k] + Q[i][1] * S[1][k] + Q[i][2] * S[2][k];
-  for (int i = 0; i < 3; ++i) {
-    for (int j = i; j < 3; ++j) {
-      const T r = M[i][0] * Q[j][0] + M[i][1] * Q[j][1] + M[i][2] * Q[j][2];
-      S[i][j] = r;
-      S[j][i] = r;
-    }
-  }
-}
-inline void rotate_symmetric_cm(const double Q[3][3], Mat3& s) {
+// The scalar form of rotate_symmetric_cm (simd_lanes.hpp) for an Eigen matrix.
+inline void rotate_symmetric_mat3(const double Q[3][3], Mat3& s) {
   double S[3][3];
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) S[i][j] = s(i, j);
@@ -214,7 +183,7 @@ inline MaterialStep material_step(FeBody& body, std::size_t e, const Mat3& L, do
     double Q[3][3];
     hughes_winget_rotation_cm(0.5 * (L(2, 1) - L(1, 2)), 0.5 * (L(0, 2) - L(2, 0)),
                               0.5 * (L(1, 0) - L(0, 1)), dt, Q);
-    rotate_symmetric_cm(Q, st.s);
+    rotate_symmetric_mat3(Q, st.s);
     ms.R << Q[0][0], Q[0][1], Q[0][2], Q[1][0], Q[1][1], Q[1][2], Q[2][0], Q[2][1], Q[2][2];
     const Mat3 D = 0.5 * (L + L.transpose());
     const PointUpdateResult r = update_point(body.material, body.constants, body.switches, st,

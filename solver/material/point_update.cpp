@@ -45,10 +45,11 @@ PointState initial_point_state(const Material& m, const ModelSwitches& sw, doubl
 // c = cos phi, the largest root of 4 c^3 - 3 c = r. c = cos(2/3 acos u) with
 // u = sqrt((1 + r) / 2) is analytic in u on [0, 1]: a Chebyshev series of
 // degree 16 in x = 2 u - 1 (coefficients by interpolation at 48 Chebyshev
-// nodes) gives it to 2e-15, without the atan2, sin and cos of Eigen's closed form
-// (computeDirect, about 60 ns a call; this form about 15 ns). Near a double
-// eigenvalue (r = +-1) both forms lose precision alike, to about 1e-8 of
-// tau_max: r carries the gap squared.
+// nodes) gives it to 2e-15, without the atan2, sin and cos of Eigen's closed
+// form (computeDirect): 19 ns a call against 60 ns (bench_material_update
+// --benchmark_filter=max_shear). Near a double eigenvalue (r = +-1) both
+// forms lose precision alike, to about 1e-8 of tau_max: r carries the gap
+// squared.
 double max_shear_stress(const Mat3& sigma) {
   const double m = sigma.trace() / 3.0;
   const double a = sigma(0, 0) - m, b = sigma(1, 1) - m, c = sigma(2, 2) - m;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "solver/common/parallel.hpp"
+#include "solver/fe/simd_lanes.hpp"
 #include "solver/material/damage.hpp"
 
 #ifdef _OPENMP
@@ -571,41 +572,25 @@ SPLAT_TARGET_CLONES void block_kinematics(SphBody& b, std::size_t first, std::si
         L[3 * j + i] = (Fd[i] * CM[j] + Fd[3 + i] * CM[3 + j] + Fd[6 + i] * CM[6 + j]) * inv_det;
       }
     }
-    // Hughes-Winget rotation (I - W dt/2)^-1 (I + W dt/2) in closed form
-    // (hughes_winget_rotation): a = dt/2 (W21, W02, W10), W = (L - L^T) / 2.
-    const double h = 0.5 * dt;
-    const vd a0 = h * (0.5 * (L[5] - L[7])), a1 = h * (0.5 * (L[6] - L[2])),
-             a2 = h * (0.5 * (L[1] - L[3]));
-    const vd a_sq = a0 * a0 + a1 * a1 + a2 * a2;
-    const vd c = 2.0 / (1.0 + a_sq);
-    const vd d = 1.0 - c * a_sq;
-    const vd Q[3][3] = {{d + c * a0 * a0, c * (a0 * a1 - a2), c * (a0 * a2 + a1)},
-                        {c * (a0 * a1 + a2), d + c * a1 * a1, c * (a1 * a2 - a0)},
-                        {c * (a0 * a2 - a1), c * (a1 * a2 + a0), d + c * a2 * a2}};
+    // Hughes-Winget rotation of the deviator, W = (L - L^T) / 2, with the
+    // FE element loop's lane kernels (simd_lanes.hpp); S[r][c] = s(r, c).
+    vd Q[3][3], S[3][3];
+    hughes_winget_rotation_cm<vd>(0.5 * (L[5] - L[7]), 0.5 * (L[6] - L[2]), 0.5 * (L[1] - L[3]), dt,
+                                  Q);
     const double* Sp[lanes] = {b.state[idx[0]].s.data(), b.state[idx[1]].s.data(),
                                b.state[idx[2]].s.data(), b.state[idx[3]].s.data()};
-    vd S[9];
-    gather_mat3(S, Sp);
-    // Q S Q^T, the six distinct entries (rotate_symmetric).
-    vd QS[3][3];
-    for (int i = 0; i < 3; ++i) {
-      for (int k = 0; k < 3; ++k) {
-        QS[i][k] = Q[i][0] * S[3 * k] + Q[i][1] * S[3 * k + 1] + Q[i][2] * S[3 * k + 2];
-      }
-    }
-    vd R[3][3];
-    for (int i = 0; i < 3; ++i) {
-      for (int j = i; j < 3; ++j) {
-        R[i][j] = QS[i][0] * Q[j][0] + QS[i][1] * Q[j][1] + QS[i][2] * Q[j][2];
-      }
-    }
+    vd s_cm[9];
+    gather_mat3(s_cm, Sp);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) S[r][c] = s_cm[3 * c + r];
+    rotate_symmetric_cm<vd>(Q, S);
     for (int l = 0; l < lanes; ++l) {
       if (!store[l]) continue;
       Mat3& st_s = b.state[idx[l]].s;
       Mat3& de = d_eps[idx[l] - first];
       for (int i = 0; i < 3; ++i) {
         for (int j = i; j < 3; ++j) {
-          st_s(i, j) = st_s(j, i) = R[i][j][l];
+          st_s(i, j) = st_s(j, i) = S[i][j][l];
           de(i, j) = de(j, i) = dt * (0.5 * (L[3 * j + i][l] + L[3 * i + j][l]));
         }
       }
