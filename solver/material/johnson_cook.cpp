@@ -4,6 +4,43 @@
 
 namespace splat {
 
+namespace {
+
+// binom(a, k), k = 0..K-1 (K <= 10), by the recurrence
+// binom(a, k) = binom(a, k - 1) (a - k + 1) / k (reciprocals from a table:
+// no divisions on the chain).
+template <int K>
+void binomial_coefficients(double a, double (&c)[K]) {
+  static_assert(K <= 10);
+  static constexpr double inv[10] = {0.0,       1.0,       1.0 / 2.0, 1.0 / 3.0, 1.0 / 4.0,
+                                     1.0 / 5.0, 1.0 / 6.0, 1.0 / 7.0, 1.0 / 8.0, 1.0 / 9.0};
+  c[0] = 1.0;
+  for (int k = 1; k < K; ++k) c[k] = c[k - 1] * (a - (k - 1)) * inv[k];
+}
+
+}  // namespace
+
+double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, double theta_old, double T_old,
+                                       double T_new) {
+  const double m = jc.m;
+  const double span = jc.T_melt - jc.T_ref;
+  const double above = T_old - jc.T_ref;
+  if (above > 0.0 && T_new >= T_old && T_new - jc.T_ref < span && m <= 7.0 && span > 0.0) {
+    // w <= 1/16: (1 + w)^m amplifies the rounding of p_old at most 1.6-fold.
+    const double w = (T_new - T_old) / above;
+    const double p_old = 1.0 - theta_old;  // T*_old^m
+    double c[8];
+    binomial_coefficients(m, c);
+    const double w2 = w * w, w4 = w2 * w2;
+    if (w <= 0.0625 && p_old * std::abs(c[7]) * (w4 * w2 * w) <= 1e-17) {
+      const double q1 = c[1] + c[2] * w, q3 = c[3] + c[4] * w, q5 = c[5] + c[6] * w;
+      const double series = w * ((q1 + q3 * w2) + q5 * w4);  // (1 + w)^m - 1
+      return 1.0 - (p_old + p_old * series);
+    }
+  }
+  return jc_thermal_factor(jc, true, T_new);
+}
+
 FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwitches& sw,
                                     double eps_p, double eps_dot_p, double T) {
   const double theta = jc_thermal_factor(jc, sw.thermal_softening, T);
@@ -24,9 +61,34 @@ FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwit
   return {hard * rate * theta, d_hard * rate * theta, hard * d_rate * theta};
 }
 
+namespace {
+
+// B (eps_p + dp)^n from P0 = B eps_p^n (eps_p > 0) and u = dp / eps_p >= 0
+// by the binomial series of degree 8, (1 + u)^n = sum binom(n, k) u^k: no
+// exp or log. Its remainder is binom(n, 9) u^9 (1 + xi)^(n - 9) <=
+// |binom(n, 9)| u^9 for n <= 9; the series is used only where that, times
+// P0, is below 1e-17 of A + P0 (the rounding of exp(n log ep) is ~1e-16),
+// else this returns a negative value and the caller evaluates exp and log.
+double hardening_power_series(const JohnsonCookParams& jc, double P0, double u) {
+  const double n = jc.n;
+  if (!(u >= 0.0) || !(n <= 9.0)) return -1.0;
+  double c[10];
+  binomial_coefficients(n, c);
+  const double u2 = u * u, u4 = u2 * u2;
+  if (P0 * std::abs(c[9]) * (u4 * u4 * u) > 1e-17 * (jc.A + P0)) return -1.0;
+  // Estrin's scheme: sum_{k=1..8} c_k u^k with a short dependency chain.
+  const double q1 = c[1] + c[2] * u, q3 = c[3] + c[4] * u, q5 = c[5] + c[6] * u,
+               q7 = c[7] + c[8] * u;
+  const double series = u * ((q1 + q3 * u2) + (q5 + q7 * u2) * u4);
+  return P0 + P0 * series;
+}
+
+}  // namespace
+
 ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_hardening,
                                     double q_trial, double G_d, double eps_p, double dt,
-                                    double scale, double hard0, double dp_guess) {
+                                    double scale, double hard0, double dp_guess,
+                                    double rate_guess) {
   constexpr int max_iterations = 200;
   const double three_g = 3.0 * G_d;
   ReturnMapResult r;
@@ -53,32 +115,41 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
 
   // Initial guess: hardening linearised at eps_p, no rate term (the rate
   // term's slope is unbounded at dp = 0).
-  double h0 = 0.0;
-  if (eps_p > 0.0) {
-    h0 = jc.n * (hard0 - jc.A) / eps_p;
-  } else if (jc.n == 1.0) {
-    h0 = jc.B;
+  double dp = dp_guess;
+  if (!(dp_guess > 0.0 && dp_guess < hi)) {
+    double h0 = 0.0;
+    if (eps_p > 0.0) {
+      h0 = jc.n * (hard0 - jc.A) / eps_p;
+    } else if (jc.n == 1.0) {
+      h0 = jc.B;
+    }
+    dp = std::min(hi, (q_trial - scale * hard0) / (three_g + scale * h0));
   }
-  double dp = (dp_guess > 0.0 && dp_guess < hi)
-                  ? dp_guess
-                  : std::min(hi, (q_trial - scale * hard0) / (three_g + scale * h0));
+  // At the guess of a step that continues plastic flow the terms need no
+  // exp or log: B ep^n from the cached hard0 by a binomial series, and the
+  // rate factor is rate_guess.
+  const bool at_guess = dp == dp_guess;
   r.converged = false;
   for (int it = 1; it <= max_iterations; ++it) {
     r.iterations = it;
     const double ep = eps_p + dp;
-    double hard = jc.A, d_hard = 0.0, dd_hard = 0.0;
+    const bool first = it == 1 && at_guess;
+    double hard = jc.A, d_hard = 0.0, dd_hard = 0.0, inv_ep = 0.0, inv_dp = 0.0;
     if (ep > 0.0) {
-      const double pw = std::exp(jc.n * std::log(ep));  // ep^n: exp and log cost less than pow
-      const double inv_ep = 1.0 / ep;                   // one division, off the exp-log path
-      hard += jc.B * pw;
-      d_hard = jc.B * jc.n * pw * inv_ep;
+      inv_ep = 1.0 / ep;
+      // B ep^n; exp and log cost less than pow.
+      double b_pw =
+          first && eps_p > 0.0 ? hardening_power_series(jc, hard0 - jc.A, dp / eps_p) : -1.0;
+      if (b_pw < 0.0) b_pw = jc.B * std::exp(jc.n * std::log(ep));
+      hard += b_pw;
+      d_hard = jc.n * b_pw * inv_ep;
       dd_hard = (jc.n - 1.0) * d_hard * inv_ep;
     }
     double rate = 1.0, d_rate = 0.0, dd_rate = 0.0;
     const double x = dp * inv_ref;
     if (rate_on && x > 1.0) {
-      rate += jc.C * std::log(x);
-      const double inv_dp = 1.0 / dp;
+      rate += first && rate_guess > 1.0 ? rate_guess - 1.0 : jc.C * std::log(x);
+      inv_dp = 1.0 / dp;
       d_rate = jc.C * inv_dp;
       dd_rate = -d_rate * inv_dp;
     }
@@ -124,19 +195,19 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     // further exp and log, and the terms handed back (and cached by
     // update_point) are those of the law at the returned dp to 1e-14.
     const double step = next - dp;
-    const double rel_h = std::abs(step) / ep;
+    const double rel_h = std::abs(step) * inv_ep;
     const bool rate_side = !rate_on || ((x > 1.0) == (next * inv_ref > 1.0));
-    const double rel_r = rate_on && x > 1.0 ? std::abs(step) / dp : 0.0;
+    const double rel_r = rate_on && x > 1.0 ? std::abs(step) * inv_dp : 0.0;
     const double n3 = (jc.n + 3.0) * (jc.n + 3.0), h2 = rel_h * rel_h, r2 = rel_r * rel_r;
     const double trunc = n3 * n3 * h2 * h2 + std::abs(jc.C) * r2 * r2;
     if (rate_side && trunc <= 1e-14) {
       // Third derivatives: (n - 2) dd_hard / ep and -2 dd_rate / dp.
-      const double d3_hard = ep > 0.0 ? (jc.n - 2.0) * dd_hard / ep : 0.0;
-      const double d3_rate = rel_r > 0.0 ? -2.0 * dd_rate / dp : 0.0;
+      const double d3_hard = (jc.n - 2.0) * dd_hard * inv_ep;
+      const double d3_rate = -2.0 * dd_rate * inv_dp;
       const double hard_n =
-          hard + step * (d_hard + step * (0.5 * dd_hard + step * (d3_hard / 6.0)));
+          hard + step * (d_hard + step * (0.5 * dd_hard + step * (d3_hard * (1.0 / 6.0))));
       const double rate_n =
-          rate + step * (d_rate + step * (0.5 * dd_rate + step * (d3_rate / 6.0)));
+          rate + step * (d_rate + step * (0.5 * dd_rate + step * (d3_rate * (1.0 / 6.0))));
       const double hard_rate_n = hard_n * rate_n;
       const double g_n = q_trial - three_g * next - scale * hard_rate_n;
       if (std::abs(g_n) + scale * hard_rate_n * trunc <= tol_g) {

@@ -28,6 +28,18 @@ inline double jc_thermal_factor(const JohnsonCookParams& jc, bool enabled, doubl
   return 1.0 - std::exp(jc.m * std::log(t_star));  // t_star^m: exp and log cost less than pow
 }
 
+// jc_thermal_factor at T_new > T_old from theta_old, its value at T_old.
+// For a small heating step, T* = (T - T_ref) / (T_melt - T_ref) in (0, 1),
+// 1 - theta = T*^m is carried by the binomial series of degree 6,
+//   T*_new^m = T*_old^m (1 + w)^m,  w = (T_new - T_old) / (T_old - T_ref),
+// with no exp or log; used only for w <= 1/16 (so that (1 + w)^m, m <= 7,
+// amplifies the rounding of T*_old^m = 1 - theta_old at most 1.6-fold) and
+// where the remainder |binom(m, 7)| w^7 times T*_old^m is below 1e-17, else
+// jc_thermal_factor evaluates it. Each step adds a rounding error of about
+// 1e-16 to theta.
+double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, double theta_old, double T_old,
+                                       double T_new);
+
 inline double jc_rate_factor(const JohnsonCookParams& jc, bool enabled, double eps_dot_p) {
   if (!enabled || eps_dot_p <= jc.eps_dot_0) return 1.0;
   return 1.0 + jc.C * std::log(eps_dot_p / jc.eps_dot_0);
@@ -68,8 +80,15 @@ struct ReturnMapResult {
 // and hard_rate are then those expansions). This converges for every state: near
 // melt (scale -> 0), at rates 1e-3 to 1e8 /s, and where d sigma / d eps_p is
 // unbounded (n < 1 at eps_p = 0).
+// Continued flow: with eps_p > 0, dp_guess > 0 and (rate term on) rate_guess
+// = R(dp_guess / dt) > 1, the terms are first expanded about eps_p and
+// dp_guess as polynomials of degree 4 and Newton's method runs on those (no
+// exp or log); that root is taken only where both expansions are the law to
+// 1e-14 at it and the residual plus their truncation is within the
+// tolerance, else it seeds the iteration above.
 ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_hardening,
                                     double q_trial, double G_d, double eps_p, double dt,
-                                    double scale, double hard0, double dp_guess = 0.0);
+                                    double scale, double hard0, double dp_guess = 0.0,
+                                    double rate_guess = 0.0);
 
 }  // namespace splat

@@ -152,8 +152,12 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   const double scale = st.strength_scale;
   ReturnMapResult rm;
   if (q_trial > st.sigma_y_static) {
+    // After a plastic step sigma_y = sigma_y_static R(eps_dot_p): the rate
+    // factor at the guess (the return's expansions start from it).
+    const double rate_guess =
+        st.eps_dot_p > 0.0 && st.sigma_y_static > 0.0 ? st.sigma_y / st.sigma_y_static : 0.0;
     rm = johnson_cook_return(m.strength, sw.rate_hardening, q_trial, G_d, st.eps_p, dt, scale,
-                             st.hardening, st.eps_dot_p * dt);
+                             st.hardening, st.eps_dot_p * dt, rate_guess);
     dp = rm.delta_eps_p;
     result.iterations = rm.iterations;
     result.converged = rm.converged;
@@ -187,14 +191,19 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
     const double w = st.sigma_y * dp;   // plastic work, J/m^3 of current volume
     st.plastic_work += J_new * w;
     const bool heated = sw.adiabatic_heating && w > 0.0;
+    const double T_old = st.T;
     if (heated) st.T += mc.chi * w * J_new / (mc.rho0 * mc.c_p);
     const double D_old = st.D;
     update_damage(m, sw, st, dp, dt, length);
-    // Temperature or damage moved: the strength at the end state changes.
-    const double end_scale =
-        (heated || st.D != D_old)
-            ? (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T)
-            : scale;
+    // Temperature or damage moved: the strength at the end state changes. An
+    // undamaged point's scale is its thermal factor, carried over a small
+    // heating step by a series (jc_thermal_factor_after_heating).
+    double end_scale = scale;
+    if (heated && st.D == 0.0 && D_old == 0.0 && sw.thermal_softening) {
+      end_scale = jc_thermal_factor_after_heating(m.strength, scale, T_old, st.T);
+    } else if (heated || st.D != D_old) {
+      end_scale = (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T);
+    }
     st.strength_scale = end_scale;
     st.sigma_y_static = end_scale * st.hardening;
     st.sigma_y = st.sigma_y_static * rate_f;
