@@ -379,6 +379,10 @@ SPLAT_LANE_INLINE Lane<W> lanes_of(F&& f) {
 template <int W, int NodesPerElement>
 struct BlockScratch {
   static constexpr int groups = static_cast<int>(block_size) / W;
+  // Axisymmetric quads: L, D, the rotation and the stress deviator have no
+  // r-theta or z-theta terms (they stay exactly zero), so only the r-z block
+  // and the hoop entry are loaded and stored.
+  static constexpr bool axisymmetric = NodesPerElement == 4;
   int count = 0;                // active elements of the block
   int element[block_size];      // element id at position p
   bool valid[block_size];       // not inverted: runs the material update and forces
@@ -431,7 +435,9 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
   V S[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      S[i][j] = lanes_of<W>([&](int l) { return body.state[s.lane_element(g, l)].s(i, j); });
+      S[i][j] = Scratch::axisymmetric && (i == 2) != (j == 2)
+                    ? V{}
+                    : lanes_of<W>([&](int l) { return body.state[s.lane_element(g, l)].s(i, j); });
   rotate_symmetric_cm<V>(Q, S);
   V D[3][3];
   for (int i = 0; i < 3; ++i)
@@ -447,7 +453,7 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
     Mat3& de = s.d_eps[s.mat_count];
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) {
-        st_s(i, j) = S[i][j][l];
+        if (!Scratch::axisymmetric || (i == 2) == (j == 2)) st_s(i, j) = S[i][j][l];
         de(i, j) = dt * D[i][j][l];
       }
     s.mat_index[s.mat_count] = e;
@@ -486,13 +492,18 @@ SPLAT_LANE_INLINE void stress_lanes(FeBody& body, int g, const Lane<W>& volume, 
   const V Qv = tr_D >= V{} ? V{} : (Q1 * c) - Q2 * L_c * tr_D;
   const V dt_e = L_c / (Qv + lane_sqrt(Qv * Qv + c * c));
   const V q_power = -q * volume * tr_D;
+  // sigma = s - p I (off the diagonal s - 0 p = s: the same value).
+  const V pressure =
+      lanes_of<W>([&](int l) { return body.state[std::size_t(s.lane_element(g, l))].p; });
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      const V s_ij =
+      if (Scratch::axisymmetric && (i == 2) != (j == 2)) {
+        sigma[i][j] = V{};
+        continue;
+      }
+      sigma[i][j] =
           lanes_of<W>([&](int l) { return body.state[std::size_t(s.lane_element(g, l))].s(i, j); });
-      sigma[i][j] = s_ij - lanes_of<W>([&](int l) {
-                      return body.state[std::size_t(s.lane_element(g, l))].p * (i == j ? 1.0 : 0.0);
-                    });
+      if (i == j) sigma[i][i] = sigma[i][i] - pressure;
     }
   for (int i = 0; i < 3; ++i) sigma[i][i] -= q;
   for (int l = 0; l < W; ++l) {

@@ -58,18 +58,21 @@ AxisymMesh jittered_rectangle(int nr, int nz, double h, double jitter, std::mt19
 }
 
 // A random symmetric stress (deviator and pressure) in every element, random
-// nodal velocities (axisymmetric: in the plane).
+// nodal velocities (axisymmetric: in the plane, and no r-theta or z-theta
+// stress, which a torsion-free axisymmetric state never has).
 void randomise(FeBody& body, NodeSet& nodes, std::mt19937_64& rng) {
+  const bool axisymmetric = body.kind == ElementKind::quad4_axisym;
   for (PointState& st : body.state) {
     Mat3 s;
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i <= j; ++i) s(i, j) = s(j, i) = random_vec(rng, 1e8).x();
+    if (axisymmetric) s(0, 2) = s(2, 0) = s(1, 2) = s(2, 1) = 0.0;
     st.s = s - (s.trace() / 3.0) * Mat3::Identity();
     st.p = random_vec(rng, 1e8).x();
   }
   for (Vec3& v : nodes.v) {
     v = random_vec(rng, 30.0);
-    if (body.kind == ElementKind::quad4_axisym) v.z() = 0.0;
+    if (axisymmetric) v.z() = 0.0;
   }
 }
 
