@@ -20,8 +20,14 @@ void binomial_coefficients(double a, double (&c)[K]) {
 
 }  // namespace
 
-double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, double theta_old, double T_old,
-                                       double T_new) {
+JcThermalSeries jc_thermal_series(const JohnsonCookParams& jc) {
+  JcThermalSeries s;
+  binomial_coefficients(jc.m, s.binom);
+  return s;
+}
+
+double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcThermalSeries& series,
+                                       double theta_old, double T_old, double T_new) {
   const double m = jc.m;
   const double span = jc.T_melt - jc.T_ref;
   const double above = T_old - jc.T_ref;
@@ -29,13 +35,12 @@ double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, double theta
     // w <= 1/16: (1 + w)^m amplifies the rounding of p_old at most 1.6-fold.
     const double w = (T_new - T_old) / above;
     const double p_old = 1.0 - theta_old;  // T*_old^m
-    double c[8];
-    binomial_coefficients(m, c);
+    const double* c = series.binom;
     const double w2 = w * w, w4 = w2 * w2;
     if (w <= 0.0625 && p_old * std::abs(c[7]) * (w4 * w2 * w) <= 1e-17) {
       const double q1 = c[1] + c[2] * w, q3 = c[3] + c[4] * w, q5 = c[5] + c[6] * w;
-      const double series = w * ((q1 + q3 * w2) + q5 * w4);  // (1 + w)^m - 1
-      return 1.0 - (p_old + p_old * series);
+      const double sum = w * ((q1 + q3 * w2) + q5 * w4);  // (1 + w)^m - 1
+      return 1.0 - (p_old + p_old * sum);
     }
   }
   return jc_thermal_factor(jc, true, T_new);

@@ -37,8 +37,13 @@ inline double jc_thermal_factor(const JohnsonCookParams& jc, bool enabled, doubl
 // where the remainder |binom(m, 7)| w^7 times T*_old^m is below 1e-17, else
 // jc_thermal_factor evaluates it. Each step adds a rounding error of about
 // 1e-16 to theta.
-double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, double theta_old, double T_old,
-                                       double T_new);
+// binom(m, k), k = 0..7, derived once per material (MaterialConstants).
+struct JcThermalSeries {
+  double binom[8] = {};
+};
+JcThermalSeries jc_thermal_series(const JohnsonCookParams& jc);
+double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcThermalSeries& series,
+                                       double theta_old, double T_old, double T_new);
 
 inline double jc_rate_factor(const JohnsonCookParams& jc, bool enabled, double eps_dot_p) {
   if (!enabled || eps_dot_p <= jc.eps_dot_0) return 1.0;

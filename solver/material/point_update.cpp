@@ -22,6 +22,7 @@ MaterialConstants derive_constants(const Material& m) {
     K_wave = std::max(c.K, c.rho0 * m.eos.mie_gruneisen->c0 * m.eos.mie_gruneisen->c0);
   }
   c.wave_speed = std::sqrt((K_wave + 4.0 * c.G / 3.0) / c.rho0);
+  c.thermal_series = jc_thermal_series(m.strength);
   return c;
 }
 
@@ -200,7 +201,8 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
     // heating step by a series (jc_thermal_factor_after_heating).
     double end_scale = scale;
     if (heated && st.D == 0.0 && D_old == 0.0 && sw.thermal_softening) {
-      end_scale = jc_thermal_factor_after_heating(m.strength, scale, T_old, st.T);
+      end_scale =
+          jc_thermal_factor_after_heating(m.strength, mc.thermal_series, scale, T_old, st.T);
     } else if (heated || st.D != D_old) {
       end_scale = (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T);
     }

@@ -27,7 +27,8 @@ TEST(johnson_cook_series, thermal_factor_after_one_heating_step) {
     for (double T_old : {299.0, 300.0, 300.5, 310.0, 600.0, 1000.0, 1350.0}) {
       for (double dT : {0.0, 1e-6, 1e-3, 0.05, 1.0, 20.0}) {
         const double theta_old = jc_thermal_factor(j, true, T_old);
-        const double got = jc_thermal_factor_after_heating(j, theta_old, T_old, T_old + dT);
+        const double got =
+            jc_thermal_factor_after_heating(j, jc_thermal_series(j), theta_old, T_old, T_old + dT);
         const double want = jc_thermal_factor(j, true, T_old + dT);
         EXPECT_NEAR(got, want, 4e-16) << "m " << m << " T " << T_old << " dT " << dT;
       }
@@ -43,7 +44,7 @@ TEST(johnson_cook_series, thermal_factor_over_many_heating_steps) {
   double theta = jc_thermal_factor(j, true, T);
   for (int k = 0; k < 100000; ++k) {
     const double T_new = T + 0.005;
-    theta = jc_thermal_factor_after_heating(j, theta, T, T_new);
+    theta = jc_thermal_factor_after_heating(j, jc_thermal_series(j), theta, T, T_new);
     T = T_new;
   }
   const double want = jc_thermal_factor(j, true, T);
