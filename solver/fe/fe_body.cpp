@@ -904,7 +904,9 @@ FeStepResult internal_forces(FeBody& body, NodeSet& nodes, double dt, bool lanes
       }
     }
 
-    // Deterministic gather: each node sums its elements' contributions in CSR order.
+    // Deterministic gather: each node sums its elements' contributions in CSR
+    // order. An eroded element's forces were zeroed when it was removed
+    // (erode_element) and are never written again, so no activity test.
     SPLAT_OMP(omp for schedule(static))
     for (long long n = first; n < last; ++n) {
       const std::size_t local = static_cast<std::size_t>(n - first);
@@ -913,8 +915,7 @@ FeStepResult internal_forces(FeBody& body, NodeSet& nodes, double dt, bool lanes
       Vec3 sum = Vec3::Zero();
       for (int k = begin; k < end; ++k) {
         const std::size_t entry = std::size_t(body.node_elem_entries[static_cast<std::size_t>(k)]);
-        const std::size_t e = entry >> 3;
-        if (body.active[e]) sum += body.elem_force[(e << shift) + (entry & 7)];
+        sum += body.elem_force[((entry >> 3) << shift) + (entry & 7)];
       }
       nodes.f[static_cast<std::size_t>(n)] += sum;
     }

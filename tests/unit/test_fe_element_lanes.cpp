@@ -126,6 +126,9 @@ void check_against_reference(const Mesh& mesh) {
                              1, nodes);
   randomise(body, nodes, rng);
   // An inactive element splits the pairs: its neighbours run one at a time.
+  // It is eroded after a step, so it had forces: the gather must not add them.
+  fe_internal_forces(body, nodes, 0.0);
+  for (Vec3& f : nodes.f) f.setZero();
   erode_element(body, nodes, 7);
   fe_internal_forces(body, nodes, 0.0);
   const std::vector<Vec3> ref = reference_forces(body, nodes);
