@@ -144,15 +144,18 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   const Mat3 sigma_old = st.cauchy();
   const double J_old = st.J;
 
-  // Elastic predictor for the deviator, then radial return.
+  // Elastic predictor for the deviator, then radial return. The yield test
+  // compares squares (sigma_y_static >= 0): an elastic step takes no square
+  // root.
   Mat3 s = st.s + 2.0 * G_d * deviator(d_eps);
-  const double q_trial = von_mises(s);
+  const double q_trial_sq = 1.5 * s.squaredNorm();
   double dp = 0.0;
   // (1 - D)(1 - T*^m) and A + B eps_p^n at the start of the step, kept in the
   // state by the last plastic step (or initial_point_state).
   const double scale = st.strength_scale;
   ReturnMapResult rm;
-  if (q_trial > st.sigma_y_static) {
+  if (q_trial_sq > st.sigma_y_static * st.sigma_y_static) {
+    const double q_trial = std::sqrt(q_trial_sq);
     // After a plastic step sigma_y = sigma_y_static R(eps_dot_p): the rate
     // factor at the guess (the return's expansions start from it).
     const double rate_guess =
@@ -178,7 +181,9 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
       st.e +
       0.5 * J_mid * ((sigma_old.array() * d_eps.array()).sum() + (s.array() * d_eps.array()).sum());
   const EosSplit eos = eos_split(m.eos, mc.K, mc.rho0, J_new);
-  double p = (eos.p_cold + eos.gamma_e * e_star) / (1.0 + 0.5 * eos.gamma_e * J_mid * tr);
+  // (No division where there is no energy term: the linear EOS.)
+  const double p_explicit = eos.p_cold + eos.gamma_e * e_star;
+  double p = eos.gamma_e != 0.0 ? p_explicit / (1.0 + 0.5 * eos.gamma_e * J_mid * tr) : p_explicit;
   p = apply_tension_damage(p, st.D);
   st.p = p;
   st.e = e_star - 0.5 * J_mid * p * tr;
