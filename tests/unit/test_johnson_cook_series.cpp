@@ -3,12 +3,17 @@
 //   - the thermal factor carried over small heating steps,
 //     jc_thermal_factor_after_heating, one step and 100,000 steps in a row;
 //   - the return of a step that continues plastic flow (the terms at the
-//     guess from the cached hardening and the previous rate factor).
+//     guess from the cached hardening and the previous rate factor);
+//   - both over 100,000 plastic steps of a point, where the cached terms
+//     carry their rounding (and the Taylor-expanded ends' truncation) from
+//     step to step.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "solver/material/johnson_cook.hpp"
+#include "solver/material/point_update.hpp"
+#include "tests/support/materials.hpp"
 
 namespace splat {
 namespace {
@@ -85,6 +90,38 @@ TEST(johnson_cook_series, continued_flow_return_matches_the_law) {
       }
     }
   }
+}
+
+// 100,000 steps of adiabatic uniaxial compression at 1e5 /s (dt 1e-9 s, total
+// plastic strain 10, heating to 1,190 K): every step after the first few
+// continues plastic flow, so the cached hardening A + B eps_p^n and strength
+// scale 1 - T*^m are carried over by the series and the Taylor-expanded ends.
+// They must stay the law at the point's eps_p and T; the drift is printed.
+TEST(johnson_cook_series, cached_terms_stay_the_law_over_many_plastic_steps) {
+  const Material m = test_support::jc_copper();
+  const ModelSwitches sw = test_support::no_damage();
+  const MaterialConstants mc = derive_constants(m);
+  PointState st = initial_point_state(m, sw, 300.0, 0.0);
+  const double dt = 1e-9, rate = 1e5;
+  // Volume-preserving uniaxial compression along z.
+  Mat3 d_eps = Mat3::Zero();
+  d_eps(2, 2) = -rate * dt;
+  d_eps(0, 0) = d_eps(1, 1) = 0.5 * rate * dt;
+  int one_step = 0;
+  for (int k = 0; k < 100000; ++k) {
+    const PointUpdateResult r = update_point(m, mc, sw, st, d_eps, 1.0, dt, 1e-6);
+    ASSERT_TRUE(r.converged);
+    one_step += r.iterations == 1;
+  }
+  const double hard = jc_hardening(m.strength, st.eps_p);
+  const double theta = jc_thermal_factor(m.strength, true, st.T);
+  std::printf("eps_p %.4f, T %.2f K, one-step returns %d; hardening drift %.2g, scale drift %.2g\n",
+              st.eps_p, st.T, one_step, st.hardening / hard - 1.0, st.strength_scale - theta);
+  EXPECT_GT(st.eps_p, 9.0);
+  EXPECT_GT(st.T, 1000.0);
+  EXPECT_GT(one_step, 90000);
+  EXPECT_NEAR(st.hardening, hard, 1e-11 * hard);
+  EXPECT_NEAR(st.strength_scale, theta, 1e-11);
 }
 
 }  // namespace
