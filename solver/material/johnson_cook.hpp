@@ -28,6 +28,13 @@ inline double jc_thermal_factor(const JohnsonCookParams& jc, bool enabled, doubl
   return 1.0 - std::exp(jc.m * std::log(t_star));  // t_star^m: exp and log cost less than pow
 }
 
+// binom(m, k), k = 0..7: the coefficients of the series below, derived once
+// per material (MaterialConstants::thermal_series).
+struct JcThermalSeries {
+  double binom[8] = {};
+};
+JcThermalSeries jc_thermal_series(const JohnsonCookParams& jc);
+
 // jc_thermal_factor at T_new > T_old from theta_old, its value at T_old.
 // For a small heating step, T* = (T - T_ref) / (T_melt - T_ref) in (0, 1),
 // 1 - theta = T*^m is carried by the binomial series of degree 6,
@@ -37,11 +44,6 @@ inline double jc_thermal_factor(const JohnsonCookParams& jc, bool enabled, doubl
 // where the remainder |binom(m, 7)| w^7 times T*_old^m is below 1e-17, else
 // jc_thermal_factor evaluates it. Each step adds a rounding error of about
 // 1e-16 to theta.
-// binom(m, k), k = 0..7, derived once per material (MaterialConstants).
-struct JcThermalSeries {
-  double binom[8] = {};
-};
-JcThermalSeries jc_thermal_series(const JohnsonCookParams& jc);
 double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcThermalSeries& series,
                                        double theta_old, double T_old, double T_new);
 
@@ -85,12 +87,12 @@ struct ReturnMapResult {
 // and hard_rate are then those expansions). This converges for every state: near
 // melt (scale -> 0), at rates 1e-3 to 1e8 /s, and where d sigma / d eps_p is
 // unbounded (n < 1 at eps_p = 0).
-// Continued flow: with eps_p > 0, dp_guess > 0 and (rate term on) rate_guess
-// = R(dp_guess / dt) > 1, the terms are first expanded about eps_p and
-// dp_guess as polynomials of degree 4 and Newton's method runs on those (no
-// exp or log); that root is taken only where both expansions are the law to
-// 1e-14 at it and the residual plus their truncation is within the
-// tolerance, else it seeds the iteration above.
+// Continued plastic flow: rate_guess is R at dp_guess (the previous step's
+// rate factor; 0 if not known). The first evaluation, at dp_guess with
+// eps_p > 0, takes B (eps_p + dp_guess)^n from hard0 by the binomial series
+// of degree 8 in dp_guess / eps_p, where its remainder is below 1e-17 of the
+// hardening term, and the rate factor from rate_guess (> 1), instead of exp
+// and log.
 ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_hardening,
                                     double q_trial, double G_d, double eps_p, double dt,
                                     double scale, double hard0, double dp_guess = 0.0,
