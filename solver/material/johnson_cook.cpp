@@ -20,13 +20,14 @@ void binomial_coefficients(double a, double (&c)[K]) {
 
 }  // namespace
 
-JcThermalSeries jc_thermal_series(const JohnsonCookParams& jc) {
-  JcThermalSeries s;
-  binomial_coefficients(jc.m, s.binom);
+JcSeries jc_series(const JohnsonCookParams& jc) {
+  JcSeries s;
+  binomial_coefficients(jc.n, s.hardening);
+  binomial_coefficients(jc.m, s.thermal);
   return s;
 }
 
-double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcThermalSeries& series,
+double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcSeries& series,
                                        double theta_old, double T_old, double T_new) {
   const double m = jc.m;
   const double span = jc.T_melt - jc.T_ref;
@@ -35,7 +36,7 @@ double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcTher
     // w <= 1/16: (1 + w)^m amplifies the rounding of p_old at most 1.6-fold.
     const double w = (T_new - T_old) / above;
     const double p_old = 1.0 - theta_old;  // T*_old^m
-    const double* c = series.binom;
+    const double* c = series.thermal;
     const double w2 = w * w, w4 = w2 * w2;
     if (w <= 0.0625 && p_old * std::abs(c[7]) * (w4 * w2 * w) <= 1e-17) {
       const double q1 = c[1] + c[2] * w, q3 = c[3] + c[4] * w, q5 = c[5] + c[6] * w;
@@ -74,26 +75,25 @@ namespace {
 // |binom(n, 9)| u^9 for n <= 9; the series is used only where that, times
 // P0, is below 1e-17 of A + P0 (the rounding of exp(n log ep) is ~1e-16),
 // else this returns a negative value and the caller evaluates exp and log.
-double hardening_power_series(const JohnsonCookParams& jc, double P0, double u) {
-  const double n = jc.n;
-  if (!(u >= 0.0) || !(n <= 9.0)) return -1.0;
-  double c[10];
-  binomial_coefficients(n, c);
+double hardening_power_series(const JohnsonCookParams& jc, const JcSeries& series, double P0,
+                              double u) {
+  if (!(u >= 0.0) || !(jc.n <= 9.0)) return -1.0;
+  const double* c = series.hardening;
   const double u2 = u * u, u4 = u2 * u2;
   if (P0 * std::abs(c[9]) * (u4 * u4 * u) > 1e-17 * (jc.A + P0)) return -1.0;
   // Estrin's scheme: sum_{k=1..8} c_k u^k with a short dependency chain.
   const double q1 = c[1] + c[2] * u, q3 = c[3] + c[4] * u, q5 = c[5] + c[6] * u,
                q7 = c[7] + c[8] * u;
-  const double series = u * ((q1 + q3 * u2) + (q5 + q7 * u2) * u4);
-  return P0 + P0 * series;
+  const double sum = u * ((q1 + q3 * u2) + (q5 + q7 * u2) * u4);  // (1 + u)^n - 1
+  return P0 + P0 * sum;
 }
 
 }  // namespace
 
 ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_hardening,
                                     double q_trial, double G_d, double eps_p, double dt,
-                                    double scale, double hard0, double dp_guess,
-                                    double rate_guess) {
+                                    double scale, double hard0, double dp_guess, double rate_guess,
+                                    const JcSeries* series) {
   constexpr int max_iterations = 200;
   const double three_g = 3.0 * G_d;
   ReturnMapResult r;
@@ -133,7 +133,7 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
   // At the guess of a step that continues plastic flow the terms need no
   // exp or log: B ep^n from the cached hard0 by a binomial series, and the
   // rate factor is rate_guess.
-  const bool at_guess = dp == dp_guess;
+  const bool at_guess = series && dp == dp_guess;
   r.converged = false;
   for (int it = 1; it <= max_iterations; ++it) {
     r.iterations = it;
@@ -143,8 +143,9 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     if (ep > 0.0) {
       inv_ep = 1.0 / ep;
       // B ep^n; exp and log cost less than pow.
-      double b_pw =
-          first && eps_p > 0.0 ? hardening_power_series(jc, hard0 - jc.A, dp / eps_p) : -1.0;
+      double b_pw = first && eps_p > 0.0
+                        ? hardening_power_series(jc, *series, hard0 - jc.A, dp / eps_p)
+                        : -1.0;
       if (b_pw < 0.0) b_pw = jc.B * std::exp(jc.n * std::log(ep));
       hard += b_pw;
       d_hard = jc.n * b_pw * inv_ep;

@@ -28,12 +28,13 @@ inline double jc_thermal_factor(const JohnsonCookParams& jc, bool enabled, doubl
   return 1.0 - std::exp(jc.m * std::log(t_star));  // t_star^m: exp and log cost less than pow
 }
 
-// binom(m, k), k = 0..7: the coefficients of the series below, derived once
-// per material (MaterialConstants::thermal_series).
-struct JcThermalSeries {
-  double binom[8] = {};
+// Binomial coefficients of the series shortcuts below, derived once per
+// material (MaterialConstants::jc_series).
+struct JcSeries {
+  double hardening[10] = {};  // binom(n, k), k = 0..9
+  double thermal[8] = {};     // binom(m, k), k = 0..7
 };
-JcThermalSeries jc_thermal_series(const JohnsonCookParams& jc);
+JcSeries jc_series(const JohnsonCookParams& jc);
 
 // jc_thermal_factor at T_new > T_old from theta_old, its value at T_old.
 // For a small heating step, T* = (T - T_ref) / (T_melt - T_ref) in (0, 1),
@@ -44,7 +45,7 @@ JcThermalSeries jc_thermal_series(const JohnsonCookParams& jc);
 // where the remainder |binom(m, 7)| w^7 times T*_old^m is below 1e-17, else
 // jc_thermal_factor evaluates it. Each step adds a rounding error of about
 // 1e-16 to theta.
-double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcThermalSeries& series,
+double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcSeries& series,
                                        double theta_old, double T_old, double T_new);
 
 inline double jc_rate_factor(const JohnsonCookParams& jc, bool enabled, double eps_dot_p) {
@@ -87,15 +88,15 @@ struct ReturnMapResult {
 // and hard_rate are then those expansions). This converges for every state: near
 // melt (scale -> 0), at rates 1e-3 to 1e8 /s, and where d sigma / d eps_p is
 // unbounded (n < 1 at eps_p = 0).
-// Continued plastic flow: rate_guess is R at dp_guess (the previous step's
-// rate factor; 0 if not known). The first evaluation, at dp_guess with
-// eps_p > 0, takes B (eps_p + dp_guess)^n from hard0 by the binomial series
-// of degree 8 in dp_guess / eps_p, where its remainder is below 1e-17 of the
-// hardening term, and the rate factor from rate_guess (> 1), instead of exp
-// and log.
+// Continued plastic flow (series given): rate_guess is R at dp_guess (the
+// previous step's rate factor; 0 if not known). The first evaluation, at
+// dp_guess with eps_p > 0, takes B (eps_p + dp_guess)^n from hard0 by the
+// binomial series of degree 8 in dp_guess / eps_p, where its remainder is
+// below 1e-17 of the hardening term, and the rate factor from rate_guess
+// (> 1), instead of exp and log.
 ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_hardening,
                                     double q_trial, double G_d, double eps_p, double dt,
                                     double scale, double hard0, double dp_guess = 0.0,
-                                    double rate_guess = 0.0);
+                                    double rate_guess = 0.0, const JcSeries* series = nullptr);
 
 }  // namespace splat

@@ -22,7 +22,7 @@ MaterialConstants derive_constants(const Material& m) {
     K_wave = std::max(c.K, c.rho0 * m.eos.mie_gruneisen->c0 * m.eos.mie_gruneisen->c0);
   }
   c.wave_speed = std::sqrt((K_wave + 4.0 * c.G / 3.0) / c.rho0);
-  c.thermal_series = jc_thermal_series(m.strength);
+  c.jc_series = jc_series(m.strength);
   return c;
 }
 
@@ -161,7 +161,7 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
     const double rate_guess =
         st.eps_dot_p > 0.0 && st.sigma_y_static > 0.0 ? st.sigma_y / st.sigma_y_static : 0.0;
     rm = johnson_cook_return(m.strength, sw.rate_hardening, q_trial, G_d, st.eps_p, dt, scale,
-                             st.hardening, st.eps_dot_p * dt, rate_guess);
+                             st.hardening, st.eps_dot_p * dt, rate_guess, &mc.jc_series);
     dp = rm.delta_eps_p;
     result.iterations = rm.iterations;
     result.converged = rm.converged;
@@ -206,8 +206,7 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
     // heating step by a series (jc_thermal_factor_after_heating).
     double end_scale = scale;
     if (heated && st.D == 0.0 && D_old == 0.0 && sw.thermal_softening) {
-      end_scale =
-          jc_thermal_factor_after_heating(m.strength, mc.thermal_series, scale, T_old, st.T);
+      end_scale = jc_thermal_factor_after_heating(m.strength, mc.jc_series, scale, T_old, st.T);
     } else if (heated || st.D != D_old) {
       end_scale = (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T);
     }

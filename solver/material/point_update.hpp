@@ -22,7 +22,7 @@ struct MaterialConstants {
   // Longitudinal (P-wave) speed sqrt((K + 4G/3) / rho0) of the undamaged
   // material, m/s; with a Mie-Grueneisen EOS the bulk part uses max(K, rho0 c0^2).
   double wave_speed = 0.0;
-  JcThermalSeries thermal_series;  // coefficients of the thermal factor's series
+  JcSeries jc_series;  // coefficients of the Johnson-Cook series shortcuts
 };
 
 MaterialConstants derive_constants(const Material& m);

@@ -32,7 +32,7 @@ TEST(johnson_cook_series, thermal_factor_after_one_heating_step) {
       for (double dT : {0.0, 1e-6, 1e-3, 0.05, 1.0, 20.0}) {
         const double theta_old = jc_thermal_factor(j, true, T_old);
         const double got =
-            jc_thermal_factor_after_heating(j, jc_thermal_series(j), theta_old, T_old, T_old + dT);
+            jc_thermal_factor_after_heating(j, jc_series(j), theta_old, T_old, T_old + dT);
         const double want = jc_thermal_factor(j, true, T_old + dT);
         EXPECT_NEAR(got, want, 4e-16) << "m " << m << " T " << T_old << " dT " << dT;
       }
@@ -48,7 +48,7 @@ TEST(johnson_cook_series, thermal_factor_over_many_heating_steps) {
   double theta = jc_thermal_factor(j, true, T);
   for (int k = 0; k < 100000; ++k) {
     const double T_new = T + 0.005;
-    theta = jc_thermal_factor_after_heating(j, jc_thermal_series(j), theta, T, T_new);
+    theta = jc_thermal_factor_after_heating(j, jc_series(j), theta, T, T_new);
     T = T_new;
   }
   const double want = jc_thermal_factor(j, true, T);
@@ -74,8 +74,10 @@ TEST(johnson_cook_series, continued_flow_return_matches_the_law) {
                                                          jc_rate_factor(j, true, dp_target / dt);
         const ReturnMapResult plain =
             johnson_cook_return(j, true, q_trial, G, eps_p, dt, 1.0, hard0, dp_prev);
-        const ReturnMapResult r = johnson_cook_return(j, true, q_trial, G, eps_p, dt, 1.0, hard0,
-                                                      dp_prev, jc_rate_factor(j, true, rate));
+        const JcSeries series = jc_series(j);
+        const ReturnMapResult r =
+            johnson_cook_return(j, true, q_trial, G, eps_p, dt, 1.0, hard0, dp_prev,
+                                jc_rate_factor(j, true, rate), &series);
         ASSERT_TRUE(plain.converged);
         ASSERT_TRUE(r.converged);
         const double dp = r.delta_eps_p;
