@@ -37,8 +37,8 @@
 //                             steps with the same strain increments (as
 //                             *_material_only), and the rest (element work:
 //                             kinematics, rotation, bulk viscosity, hourglass,
-//                             forces, node gather). A batched material update
-//                             replaces the first; the second stays.
+//                             forces, node gather). Only the first depends on
+//                             the material model.
 // The *_material_only benchmarks time the material kernel alone
 // (update_point on the same states with the same strain increment, one
 // thread) to give the split between the kernel and the element work.
