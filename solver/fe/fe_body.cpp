@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -110,7 +111,18 @@ void finish_body(FeBody& body, NodeSet& nodes, double temperature, unsigned long
   body.hg.assign(ne, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
   body.hg_kappa.assign(ne, 0.0);
   body.active.assign(ne, 1);
-  body.elem_force.assign(ne * static_cast<std::size_t>(npe), Vec3::Zero());
+  const std::size_t records = (ne + fe_force_lanes - 1) / fe_force_lanes;
+  body.elem_force.assign(records * fe_force_lanes * static_cast<std::size_t>(npe) *
+                             static_cast<std::size_t>(body.force_components()),
+                         0.0);
+  body.node_run.assign(ne, 0);
+  for (std::size_t e = 0; e + fe_force_lanes <= ne; e += fe_force_lanes) {
+    bool run = true;
+    for (std::size_t l = 1; l < fe_force_lanes && run; ++l)
+      for (int a = 0; a < npe; ++a)
+        run = run && body.conn[e + l][a] == body.conn[e][a] + static_cast<int>(l);
+    body.node_run[e] = run ? 1 : 0;
+  }
 
   const std::size_t nn = body.node_end - body.node_begin;
   body.node_elem_offsets.assign(nn + 1, 0);
@@ -223,12 +235,16 @@ inline bool to_be_eroded(const FeBody& body, std::size_t e, double V, double dt_
   return s.erosion_min_time_step > 0.0 && dt_e < s.erosion_min_time_step;
 }
 
-// Element e's nodal forces, nodes_per_element() of them.
-inline Vec3* element_forces(FeBody& body, std::size_t e) {
-  return &body.elem_force[e * static_cast<std::size_t>(body.nodes_per_element())];
+// Element e's force on its local node a: components 0 .. force_components() - 1
+// of f (the axisymmetric z entry, always 0, is not stored).
+inline void store_element_force(FeBody& body, std::size_t e, int a, double f0, double f1,
+                                double f2) {
+  body.elem_force[body.force_index(e, a, 0)] = f0;
+  body.elem_force[body.force_index(e, a, 1)] = f1;
+  if (body.kind == ElementKind::hex8) body.elem_force[body.force_index(e, a, 2)] = f2;
 }
 inline void zero_forces(FeBody& body, std::size_t e) {
-  std::fill_n(element_forces(body, e), body.nodes_per_element(), Vec3::Zero());
+  for (int a = 0; a < body.nodes_per_element(); ++a) store_element_force(body, e, a, 0, 0, 0);
 }
 
 // Books an element's step whose forces the caller has written to
@@ -303,8 +319,7 @@ void hex_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, B
     hg_power = hex8_hourglass_viscous(qdot, a_h, Q);
   }
   const Hex8Field f = hex8_forces_cm(ms.sigma, g, xm, Q);
-  Vec3* out = element_forces(body, e);
-  for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], f.u[2][a]);
+  for (int a = 0; a < 8; ++a) store_element_force(body, e, a, f.u[0][a], f.u[1][a], f.u[2][a]);
   finish_element(body, e, V, ms, hg_power, sums, erode);
 }
 
@@ -354,8 +369,7 @@ void quad_element(FeBody& body, const NodeSet& nodes, std::size_t e, double dt, 
     const double a_h = quad4_axisym_viscous_hourglass_coefficient(c_hg, rho, ms.c, g.rbar, g.area);
     hg_power = quad4_axisym_hourglass_viscous_cm(gamma, v, a_h, f);
   }
-  Vec3* out = element_forces(body, e);
-  for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a], f.u[1][a], 0.0);
+  for (int a = 0; a < 4; ++a) store_element_force(body, e, a, f.u[0][a], f.u[1][a], 0.0);
   finish_element(body, e, V, ms, hg_power, sums, erode);
 }
 
@@ -374,6 +388,29 @@ SPLAT_LANE_INLINE Lane<W> lanes_of(F&& f) {
   }
 }
 
+// Lane indices of a two-source permute of Lane<8> vectors (__builtin_shuffle:
+// 0-7 pick from the first source, 8-15 from the second).
+using LaneIndex8 = long long __attribute__((vector_size(64)));
+
+// Components (x, y, z) of the 8 consecutive Vec3 at p as three lanes: three
+// whole-vector loads and two two-source permutes per component, in place of
+// 24 single loads and lane inserts.
+SPLAT_LANE_INLINE void load_vec3_run(const Vec3* p, Lane<8> out[3]) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  const char* bytes = reinterpret_cast<const char*>(p);
+  Lane<8> A, B, C;
+  std::memcpy(&A, bytes, sizeof A);
+  std::memcpy(&B, bytes + sizeof A, sizeof B);
+  std::memcpy(&C, bytes + 2 * sizeof A, sizeof C);
+  // Component c of node l is double 3 l + c of the 24.
+  out[0] = __builtin_shuffle(__builtin_shuffle(A, B, LaneIndex8{0, 3, 6, 9, 12, 15, 0, 0}), C,
+                             LaneIndex8{0, 1, 2, 3, 4, 5, 10, 13});
+  out[1] = __builtin_shuffle(__builtin_shuffle(A, B, LaneIndex8{1, 4, 7, 10, 13, 0, 0, 0}), C,
+                             LaneIndex8{0, 1, 2, 3, 4, 8, 11, 14});
+  out[2] = __builtin_shuffle(__builtin_shuffle(A, B, LaneIndex8{2, 5, 8, 11, 14, 0, 0, 0}), C,
+                             LaneIndex8{0, 1, 2, 3, 4, 9, 12, 15});
+}
+
 // Block-local data of the phased element loop, one entry per position p of
 // the block's active elements (element order), lanes grouped W at a time.
 template <int W, int NodesPerElement>
@@ -389,6 +426,7 @@ struct BlockScratch {
   Lane<W> L_c[groups];          // characteristic length, m
   Lane<W> tr_D[groups];         // tr(D) at mid-step, 1/s (0 for dt = 0)
   Lane<W> R[groups][3][3];      // incremental rotation (I for dt = 0)
+  bool run[groups];             // the group's lanes are one node run (FeBody::node_run)
   double dt_e[block_size];      // CFL bound, s
   double q_power[block_size];   // bulk-viscosity power, W
   double hg_power[block_size];  // hourglass power, W
@@ -403,7 +441,72 @@ struct BlockScratch {
   // Element of lane l of group g (the last one repeated past the end).
   int lane_element(int g, int l) const { return element[std::min(g * W + l, count - 1)]; }
   bool real(int g, int l) const { return g * W + l < count && valid[g * W + l]; }
+  // Every lane of group g is a valid element.
+  bool full(int g) const {
+    if (g * W + W > count) return false;
+    for (int l = 0; l < W; ++l)
+      if (!valid[g * W + l]) return false;
+    return true;
+  }
 };
+
+// Positions and velocities of the nodes of lane group g (components 0 .. C - 1
+// of local nodes 0 .. N - 1): whole-vector loads when the group's elements
+// are one node run (sets s.run[g]), else lane by lane.
+template <int W, int C, int N, class Field, class Scratch>
+SPLAT_LANE_INLINE void load_group_nodes(const FeBody& body, const NodeSet& nodes, int g, Scratch& s,
+                                        Field& x, Field& v) {
+  const int p = g * W;
+  s.run[g] = false;
+  if constexpr (W == static_cast<int>(fe_force_lanes)) {
+    const int e0 = s.element[p];
+    // The active elements are listed in increasing order, so W of them
+    // spanning W ids are consecutive.
+    s.run[g] = p + W <= s.count && s.element[p + W - 1] == e0 + W - 1 && e0 % W == 0 &&
+               body.node_run[std::size_t(e0)] != 0;
+    if (s.run[g]) {
+      const std::array<int, 8>& cn = body.conn[std::size_t(e0)];
+      for (int a = 0; a < N; ++a) {
+        Lane<W> xa[3], va[3];
+        load_vec3_run(&nodes.x[std::size_t(cn[a])], xa);
+        load_vec3_run(&nodes.v[std::size_t(cn[a])], va);
+        for (int i = 0; i < C; ++i) {
+          x.u[i][a] = xa[i];
+          v.u[i][a] = va[i];
+        }
+      }
+      return;
+    }
+  }
+  const std::array<int, 8>* cn[W];
+  for (int l = 0; l < W; ++l) cn[l] = &body.conn[std::size_t(s.lane_element(g, l))];
+  for (int a = 0; a < N; ++a)
+    for (int i = 0; i < C; ++i) {
+      x.u[i][a] = lanes_of<W>([&](int l) { return nodes.x[std::size_t((*cn[l])[a])][i]; });
+      v.u[i][a] = lanes_of<W>([&](int l) { return nodes.v[std::size_t((*cn[l])[a])][i]; });
+    }
+}
+
+// Element forces of lane group g (components 0 .. C - 1 of local nodes
+// 0 .. N - 1) into FeBody::elem_force: whole-vector stores when the group is a
+// node run of valid elements (its lanes are one lane-order record), else lane
+// by lane for the valid lanes.
+template <int W, int C, int N, class Field, class Scratch>
+SPLAT_LANE_INLINE void store_group_forces(FeBody& body, int g, const Scratch& s, const Field& f) {
+  if (s.run[g] && s.full(g)) {
+    const std::size_t e0 = std::size_t(s.element[g * W]);
+    for (int a = 0; a < N; ++a)
+      for (int i = 0; i < C; ++i)
+        std::memcpy(&body.elem_force[body.force_index(e0, a, i)], &f.u[i][a], sizeof(Lane<W>));
+    return;
+  }
+  for (int l = 0; l < W; ++l) {
+    if (!s.real(g, l)) continue;
+    const std::size_t e = std::size_t(s.element[g * W + l]);
+    for (int a = 0; a < N; ++a)
+      for (int i = 0; i < C; ++i) body.elem_force[body.force_index(e, a, i)] = f.u[i][a][l];
+  }
+}
 
 // Active elements of [begin, end) in order.
 template <class Scratch>
@@ -547,14 +650,8 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
 
   // (a) kinematics.
   for (int g = 0; g < groups; ++g) {
-    const std::array<int, 8>* cn[W];
-    for (int l = 0; l < W; ++l) cn[l] = &body.conn[std::size_t(s.lane_element(g, l))];
     Hex8FieldT<V> x, v;
-    for (int a = 0; a < 8; ++a)
-      for (int i = 0; i < 3; ++i) {
-        x.u[i][a] = lanes_of<W>([&](int l) { return nodes.x[std::size_t((*cn[l])[a])][i]; });
-        v.u[i][a] = lanes_of<W>([&](int l) { return nodes.v[std::size_t((*cn[l])[a])][i]; });
-      }
+    load_group_nodes<W, 3, 8>(body, nodes, g, s, x, v);
     xm[g] = hex8_modes_cm(x);
     geo[g] = hex8_geometry_cm(xm[g]);
     const V volume = geo[g].volume;
@@ -642,13 +739,9 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
       }
     }
     const Hex8FieldT<V> f = hex8_forces_cm(sigma, geo[g], xm[g], Q);
-    for (int l = 0; l < W; ++l) {
-      if (!s.real(g, l)) continue;
-      const int p = g * W + l;
-      s.hg_power[p] = power[l];
-      Vec3* out = element_forces(body, std::size_t(s.element[p]));
-      for (int a = 0; a < 8; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], f.u[2][a][l]);
-    }
+    for (int l = 0; l < W; ++l)
+      if (s.real(g, l)) s.hg_power[g * W + l] = power[l];
+    store_group_forces<W, 3, 8>(body, g, s, f);
   }
 
   // (d) bookkeeping.
@@ -673,15 +766,9 @@ SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std:
 
   // (a) kinematics.
   for (int g = 0; g < groups; ++g) {
-    const std::array<int, 8>* cn[W];
-    for (int l = 0; l < W; ++l) cn[l] = &body.conn[std::size_t(s.lane_element(g, l))];
     Quad4FieldT<V>& x = xs[g];
     Quad4FieldT<V>& v = vs[g];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 2; ++i) {
-        x.u[i][a] = lanes_of<W>([&](int l) { return nodes.x[std::size_t((*cn[l])[a])][i]; });
-        v.u[i][a] = lanes_of<W>([&](int l) { return nodes.v[std::size_t((*cn[l])[a])][i]; });
-      }
+    load_group_nodes<W, 2, 4>(body, nodes, g, s, x, v);
     grad[g] = quad4_axisym_gradient_cm(x);
     const V volume = grad[g].volume;
     s.L_c[g] = quad4_axisym_characteristic_length_cm(x, grad[g].area);
@@ -757,13 +844,9 @@ SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std:
     } else {
       power = quad4_axisym_hourglass_viscous_cm(gamma, vs[g], coefficient, f);
     }
-    for (int l = 0; l < W; ++l) {
-      if (!s.real(g, l)) continue;
-      const int p = g * W + l;
-      s.hg_power[p] = power[l];
-      Vec3* out = element_forces(body, std::size_t(s.element[p]));
-      for (int a = 0; a < 4; ++a) out[a] = Vec3(f.u[0][a][l], f.u[1][a][l], 0.0);
-    }
+    for (int l = 0; l < W; ++l)
+      if (s.real(g, l)) s.hg_power[g * W + l] = power[l];
+    store_group_forces<W, 2, 4>(body, g, s, f);
   }
 
   // (d) bookkeeping.
@@ -884,7 +967,6 @@ FeStepResult internal_forces(FeBody& body, NodeSet& nodes, double dt, bool lanes
 
   const long long first = static_cast<long long>(body.node_begin);
   const long long last = static_cast<long long>(body.node_end);
-  const int shift = hex ? 3 : 2;  // e * npe = e << shift
 
   // One parallel region (one fork and join per step) for the element loop
   // and the node gather, which waits for it at the implicit barrier.
@@ -915,7 +997,10 @@ FeStepResult internal_forces(FeBody& body, NodeSet& nodes, double dt, bool lanes
       Vec3 sum = Vec3::Zero();
       for (int k = begin; k < end; ++k) {
         const std::size_t entry = std::size_t(body.node_elem_entries[static_cast<std::size_t>(k)]);
-        sum += body.elem_force[((entry >> 3) << shift) + (entry & 7)];
+        const double* fa = &body.elem_force[body.force_index(entry >> 3, int(entry & 7), 0)];
+        sum.x() += fa[0];
+        sum.y() += fa[fe_force_lanes];
+        if (hex) sum.z() += fa[2 * fe_force_lanes];
       }
       nodes.f[static_cast<std::size_t>(n)] += sum;
     }

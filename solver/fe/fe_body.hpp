@@ -37,6 +37,10 @@ struct NodeSet {
 
 enum class ElementKind { quad4_axisym, hex8 };
 
+// Elements whose forces share one lane-order record (FeBody::force_index),
+// and the length of a node run (FeBody::node_run).
+inline constexpr std::size_t fe_force_lanes = 8;
+
 struct FeSettings {
   bool stiffness_hourglass = false;    // Flanagan-Belytschko stiffness form, else viscous
   double hourglass_coefficient = 0.1;  // -
@@ -62,6 +66,11 @@ struct FeBody {
   std::vector<double> element_mass;      // kg (2D: per radian)
   std::vector<int> node_elem_offsets;    // CSR node -> (element * 8 + local node), local to
   std::vector<int> node_elem_entries;    //   the body's node range, for a deterministic gather
+  // 1 at an element e (e a multiple of fe_force_lanes) that starts a run:
+  // elements e .. e + 7 all exist and each local node a of element e + l is
+  // node conn[e][a] + l. The element loop loads such a run's node positions
+  // and velocities as whole vectors (structured meshes are mostly runs).
+  std::vector<std::uint8_t> node_run;
 
   // Every step.
   std::vector<PointState> state;        // material state at the element centre
@@ -71,11 +80,32 @@ struct FeBody {
   std::vector<std::array<Vec3, 4>> hg;  // stiffness-form hourglass generalised forces
   std::vector<double> hg_kappa;         // stiffness-form kappa that hg was built with
   std::vector<std::uint8_t> active;     // 0 once eroded
-  std::vector<Vec3> elem_force;         // scratch: element nodal forces, element e's node a at
-                                        //   e * nodes_per_element() + a
+  std::vector<double> elem_force;       // scratch: element nodal forces, N, in lane order
+                                        //   (component i of element e's node a at
+                                        //   force_index(e, a, i)); an eroded element's are 0
 
   std::size_t num_elements() const { return conn.size(); }
   int nodes_per_element() const { return kind == ElementKind::hex8 ? 8 : 4; }
+  // Force components stored per node: (x, y, z) in 3D, (r, z) axisymmetric.
+  int force_components() const { return kind == ElementKind::hex8 ? 3 : 2; }
+  // Element forces are stored in records of fe_force_lanes elements: the
+  // record of elements 8k .. 8k + 7 holds, for each local node a and
+  // component i, the 8 elements' values side by side, so the element loop
+  // stores a group's forces as whole vectors.
+  std::size_t force_index(std::size_t e, int a, int i) const {
+    const std::size_t record = e / fe_force_lanes;
+    const std::size_t row =
+        (record * static_cast<std::size_t>(nodes_per_element()) + static_cast<std::size_t>(a)) *
+            static_cast<std::size_t>(force_components()) +
+        static_cast<std::size_t>(i);
+    return row * fe_force_lanes + e % fe_force_lanes;
+  }
+  // Element e's force on its local node a (component 2 is 0 axisymmetric), N.
+  Vec3 element_force(std::size_t e, int a) const {
+    Vec3 f = Vec3::Zero();
+    for (int i = 0; i < force_components(); ++i) f[i] = elem_force[force_index(e, a, i)];
+    return f;
+  }
 };
 
 // Reductions over one body for one step.

@@ -7,6 +7,7 @@
 // lane groups are shifted by one element.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "solver/fe/fe_body.hpp"
@@ -172,10 +173,8 @@ void check_pairing_shift(const Mesh& mesh) {
   }
   int plastic = 0;
   for (std::size_t e = 1; e < body[0].num_elements(); ++e) {
-    for (int a = 0; a < body[0].nodes_per_element(); ++a) {
-      const std::size_t k = e * static_cast<std::size_t>(body[0].nodes_per_element()) + a;
-      ASSERT_EQ(body[0].elem_force[k], body[1].elem_force[k]) << "element " << e;
-    }
+    for (int a = 0; a < body[0].nodes_per_element(); ++a)
+      ASSERT_EQ(body[0].element_force(e, a), body[1].element_force(e, a)) << "element " << e;
     ASSERT_EQ(body[0].state[e].s, body[1].state[e].s) << "element " << e;
     ASSERT_EQ(body[0].state[e].p, body[1].state[e].p) << "element " << e;
     ASSERT_EQ(body[0].state[e].eps_p, body[1].state[e].eps_p) << "element " << e;
@@ -239,10 +238,8 @@ void check_lanes_against_one_by_one(const Mesh& mesh, const FeSettings& settings
     ASSERT_EQ(body[0].q[e], body[1].q[e]) << "element " << e;
     ASSERT_EQ(body[0].volume[e], body[1].volume[e]) << "element " << e;
     ASSERT_EQ(body[0].char_length[e], body[1].char_length[e]) << "element " << e;
-    for (int node = 0; node < body[0].nodes_per_element(); ++node) {
-      const std::size_t k = e * static_cast<std::size_t>(body[0].nodes_per_element()) + node;
-      ASSERT_EQ(body[0].elem_force[k], body[1].elem_force[k]) << "element " << e;
-    }
+    for (int node = 0; node < body[0].nodes_per_element(); ++node)
+      ASSERT_EQ(body[0].element_force(e, node), body[1].element_force(e, node)) << "element " << e;
     plastic += a.eps_p > 0.0;
   }
   EXPECT_GT(plastic, 0);
@@ -300,6 +297,44 @@ TEST(fe_element_lanes, quad_lanes_match_one_element_path_stiffness_hourglass) {
 TEST(fe_element_lanes, quad_lanes_match_one_element_path_with_erosion) {
   std::mt19937_64 rng(53);
   check_lanes_against_one_by_one(jittered_rectangle(19, 13, 1e-4, 0.2, rng), with_erosion());
+}
+
+// Rows of 16 hexahedra and of 19 quads: most lane groups are node runs
+// (whole-vector node loads and force stores), some are not (a row ends inside
+// them, or the eroded element 5 shifts block 0's groups), and the inverted
+// element 70 sits in a run.
+TEST(fe_element_lanes, hex_node_runs_match_one_element_path) {
+  std::mt19937_64 rng(54);
+  const HexMesh mesh = jittered_box(16, 3, 3, 1e-4, 0.15, rng);
+  check_lanes_against_one_by_one(mesh, FeSettings{});
+  check_lanes_against_one_by_one(mesh, stiffness_form());
+  check_lanes_against_one_by_one(mesh, with_erosion());
+}
+
+// FeBody::node_run against a count from the mesh's rows: a record of 8
+// elements starting at e is a run exactly when its elements share one row.
+TEST(fe_element_lanes, node_runs_are_the_records_within_one_row) {
+  std::mt19937_64 rng(55);
+  auto expected = [](std::size_t elements, std::size_t row) {
+    int runs = 0;
+    for (std::size_t e = 0; e + 8 <= elements; e += 8) runs += e % row + 8 <= row;
+    return runs;
+  };
+  auto count = [](const FeBody& b) {
+    return static_cast<int>(std::count(b.node_run.begin(), b.node_run.end(), 1));
+  };
+  NodeSet nodes;
+  const FeBody hex = make_fe_body("h", jittered_box(16, 3, 3, 1e-4, 0.15, rng), jc_copper(),
+                                  no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes);
+  EXPECT_EQ(count(hex), 18);
+  EXPECT_EQ(count(hex), expected(hex.num_elements(), 16));
+  const FeBody odd = make_fe_body("o", jittered_box(7, 6, 5, 1e-4, 0.15, rng), jc_copper(),
+                                  no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes);
+  EXPECT_EQ(count(odd), 0);
+  const FeBody quad = make_fe_body("q", jittered_rectangle(19, 13, 1e-4, 0.2, rng), jc_copper(),
+                                   no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes);
+  EXPECT_GT(count(quad), 0);
+  EXPECT_EQ(count(quad), expected(quad.num_elements(), 19));
 }
 
 }  // namespace
