@@ -695,18 +695,21 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
     V L_end[3][3], qdot[4][3], Q[4][3];
     hex8_velocity_gradient_cm(w[g], geo[g], L_end);
     hex8_hourglass_rates_cm(w[g], xm[g], L_end, qdot);
-    V coefficient;  // kappa (stiffness) or a_h (viscous)
+    // kappa (stiffness) or a_h (viscous): hex8_*_hourglass_coefficient, the
+    // same operations, with V^(1/3)'s estimate lane by lane and its Halley
+    // steps and the viscous coefficient on whole lanes.
+    const V h = cbrt_positive_refine(
+        volume, lanes_of<W>([&](int l) { return cbrt_positive_estimate(volume[l]); }));
+    V coefficient =
+        hex8_viscous_hourglass_coefficient_of_cbrt(c_hg, rho, body.constants.wave_speed, h);
     for (int l = 0; l < W; ++l) {
       const std::size_t e = std::size_t(s.lane_element(g, l));
       if (!s.real(g, l)) {
         coefficient[l] = 0.0;
       } else if (stiffness) {
         const double G_d = (1.0 - body.state[e].D) * body.constants.G;
-        coefficient[l] = hex8_stiffness_hourglass_coefficient(c_hg, G_d, volume[l]);
+        coefficient[l] = hex8_stiffness_hourglass_coefficient_of_cbrt(c_hg, G_d, h[l]);
         soften_held_hourglass(body.hg_kappa[e], coefficient[l], body.hg[e].data(), 4);
-      } else {
-        coefficient[l] = hex8_viscous_hourglass_coefficient(c_hg, body.element_mass[e] / volume[l],
-                                                            body.constants.wave_speed, volume[l]);
       }
     }
     V power = V{};
@@ -814,7 +817,10 @@ SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std:
     quad4_axisym_stress_forces_cm(sigma[0][0], sigma[0][1], sigma[1][0], sigma[1][1], sigma[2][2],
                                   gr, f);
     const std::array<V, 4> gamma = quad4_axisym_hourglass_vector_cm(xs[g], gr);
-    V coefficient;  // kappa (stiffness) or a_h (viscous)
+    // kappa (stiffness) or a_h (viscous): quad4_axisym_*_hourglass_coefficient,
+    // the same operations, the viscous one on whole lanes.
+    V coefficient = quad4_axisym_viscous_hourglass_coefficient_t(
+        c_hg, rho, body.constants.wave_speed, gr.rbar, gr.area);
     for (int l = 0; l < W; ++l) {
       const std::size_t e = std::size_t(s.lane_element(g, l));
       if (!s.real(g, l)) {
@@ -823,10 +829,6 @@ SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std:
         const double G_d = (1.0 - body.state[e].D) * body.constants.G;
         coefficient[l] = quad4_axisym_stiffness_hourglass_coefficient(c_hg, G_d, gr.rbar[l]);
         soften_held_hourglass(body.hg_kappa[e], coefficient[l], body.hg[e].data(), 1);
-      } else {
-        coefficient[l] = quad4_axisym_viscous_hourglass_coefficient(
-            c_hg, body.element_mass[e] / gr.volume[l], body.constants.wave_speed, gr.rbar[l],
-            gr.area[l]);
       }
     }
     V power;

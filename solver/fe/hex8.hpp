@@ -333,24 +333,40 @@ double hex8_characteristic_length(const Hex8Vectors& x, double volume);
 // estimate (exponent divided by 3, within ~3 %) refined by two Halley steps
 // y <- y (y^3 + 2 x) / (2 y^3 + x) (cubic convergence). A sixth of the cost of
 // std::cbrt, which was a visible part of the element loop.
-inline double cbrt_positive(double x) {
-  double y = std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) / 3 + 0x2A9F7893782DA1CEull);
+// The estimate and the steps are apart so that the element loop can take the
+// estimate lane by lane and the steps on whole lanes (T = double or Lane<W>),
+// to the same bits.
+inline double cbrt_positive_estimate(double x) {
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) / 3 + 0x2A9F7893782DA1CEull);
+}
+template <class T>
+SPLAT_LANE_INLINE T cbrt_positive_refine(const T& x, T y) {
   for (int i = 0; i < 2; ++i) {
-    const double y3 = y * y * y;
+    const T y3 = y * y * y;
     y *= (y3 + 2.0 * x) / (2.0 * y3 + x);
   }
   return y;
 }
-
-// a_h = c_hg rho c V^(2/3) / 4, kg/s.
-inline double hex8_viscous_hourglass_coefficient(double c_hg, double rho, double c, double volume) {
-  const double h = cbrt_positive(volume);
-  return 0.25 * c_hg * rho * c * h * h;
+inline double cbrt_positive(double x) {
+  return cbrt_positive_refine(x, cbrt_positive_estimate(x));
 }
 
-// kappa = c_hg G_d V^(1/3) / 4, N/m.
+// a_h = c_hg rho c V^(2/3) / 4, kg/s, from h = V^(1/3) (T = double or lanes).
+template <class T>
+SPLAT_LANE_INLINE T hex8_viscous_hourglass_coefficient_of_cbrt(double c_hg, const T& rho, double c,
+                                                               const T& h) {
+  return 0.25 * c_hg * rho * c * h * h;
+}
+inline double hex8_viscous_hourglass_coefficient(double c_hg, double rho, double c, double volume) {
+  return hex8_viscous_hourglass_coefficient_of_cbrt(c_hg, rho, c, cbrt_positive(volume));
+}
+
+// kappa = c_hg G_d V^(1/3) / 4, N/m, from h = V^(1/3).
+inline double hex8_stiffness_hourglass_coefficient_of_cbrt(double c_hg, double G_d, double h) {
+  return 0.25 * c_hg * G_d * h;
+}
 inline double hex8_stiffness_hourglass_coefficient(double c_hg, double G_d, double volume) {
-  return 0.25 * c_hg * G_d * cbrt_positive(volume);
+  return hex8_stiffness_hourglass_coefficient_of_cbrt(c_hg, G_d, cbrt_positive(volume));
 }
 
 // Viscous form: Q^k = a_h qdot^k; returns the absorbed power a_h sum |qdot^k|^2, W.

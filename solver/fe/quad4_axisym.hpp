@@ -232,10 +232,16 @@ double quad4_axisym_characteristic_length(const Quad4Vectors& x, double area);
 // gamma_a of the single hourglass mode, -.
 std::array<double, 4> quad4_axisym_hourglass_vector(const Quad4Vectors& x, const Quad4Gradient& g);
 
-// a_h = c_hg rho c rbar sqrt(A) / 2, kg/s per radian.
+// a_h = c_hg rho c rbar sqrt(A) / 2, kg/s per radian (T = double or lanes).
+template <class T>
+SPLAT_LANE_INLINE T quad4_axisym_viscous_hourglass_coefficient_t(double c_hg, const T& rho,
+                                                                 double c, const T& rbar,
+                                                                 const T& area) {
+  return 0.5 * c_hg * rho * c * rbar * lane_sqrt(lane_max(area, T{}));
+}
 inline double quad4_axisym_viscous_hourglass_coefficient(double c_hg, double rho, double c,
                                                          double rbar, double area) {
-  return 0.5 * c_hg * rho * c * rbar * std::sqrt(std::max(area, 0.0));
+  return quad4_axisym_viscous_hourglass_coefficient_t(c_hg, rho, c, rbar, area);
 }
 inline double quad4_axisym_viscous_hourglass_coefficient(double c_hg, double rho, double c,
                                                          const Quad4Gradient& g) {
