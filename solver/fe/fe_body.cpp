@@ -136,10 +136,17 @@ void finish_body(FeBody& body, NodeSet& nodes, double temperature, unsigned long
   for (std::size_t i = 0; i < nn; ++i) body.node_elem_offsets[i + 1] += body.node_elem_offsets[i];
   body.node_elem_entries.assign(static_cast<std::size_t>(body.node_elem_offsets[nn]), 0);
   std::vector<int> fill(body.node_elem_offsets.begin(), body.node_elem_offsets.end() - 1);
+  if (body.elem_force.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw std::invalid_argument("body '" + body.name + "': " + std::to_string(ne) +
+                                " elements are more than one body can hold");
+  }
+  body.node_force_offsets.assign(body.node_elem_entries.size(), 0);
   for (std::size_t e = 0; e < ne; ++e) {
     for (int a = 0; a < npe; ++a) {
       const std::size_t local = static_cast<std::size_t>(body.conn[e][a]) - body.node_begin;
-      body.node_elem_entries[static_cast<std::size_t>(fill[local]++)] = static_cast<int>(e) * 8 + a;
+      const std::size_t k = static_cast<std::size_t>(fill[local]++);
+      body.node_elem_entries[k] = static_cast<int>(e) * 8 + a;
+      body.node_force_offsets[k] = static_cast<std::uint32_t>(body.force_index(e, a, 0));
     }
   }
 }
@@ -450,6 +457,20 @@ struct BlockScratch {
   }
 };
 
+// A per-element field (volume0, element_mass) over lane group g: one
+// whole-vector load when the group's elements are consecutive (the active
+// elements are listed in increasing order), else lane by lane.
+template <int W, class Scratch>
+SPLAT_LANE_INLINE Lane<W> element_lanes(const std::vector<double>& field, const Scratch& s, int g) {
+  const int p = g * W;
+  if (p + W <= s.count && s.element[p + W - 1] == s.element[p] + W - 1) {
+    Lane<W> v;
+    std::memcpy(&v, &field[std::size_t(s.element[p])], sizeof v);
+    return v;
+  }
+  return lanes_of<W>([&](int l) { return field[std::size_t(s.lane_element(g, l))]; });
+}
+
 // Positions and velocities of the nodes of lane group g (components 0 .. C - 1
 // of local nodes 0 .. N - 1): whole-vector loads when the group's elements
 // are one node run (sets s.run[g]), else lane by lane.
@@ -549,6 +570,10 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
       D[i][j] = 0.5 * (L[i][j] + L[j][i]);
     }
   s.tr_D[g] = D[0][0] + (D[1][1] + D[2][2]);  // Eigen's trace(): d0 + (d1 + d2)
+  V d_eps[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) d_eps[i][j] = dt * D[i][j];
+  const V J_new = volume / element_lanes<W>(body.volume0, s, g);
   for (int l = 0; l < W; ++l) {
     if (!s.real(g, l)) continue;
     const int e = s.element[g * W + l];
@@ -557,10 +582,10 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) {
         if (!Scratch::axisymmetric || (i == 2) == (j == 2)) st_s(i, j) = S[i][j][l];
-        de(i, j) = dt * D[i][j][l];
+        de(i, j) = d_eps[i][j][l];
       }
     s.mat_index[s.mat_count] = e;
-    s.J_new[s.mat_count] = volume[l] / body.volume0[static_cast<std::size_t>(e)];
+    s.J_new[s.mat_count] = J_new[l];
     s.length[s.mat_count] = s.L_c[g][l];
     ++s.mat_count;
   }
@@ -586,9 +611,7 @@ SPLAT_LANE_INLINE void stress_lanes(FeBody& body, int g, const Lane<W>& volume, 
   using V = Lane<W>;
   const double c = body.constants.wave_speed;
   const double Q1 = body.settings.q_linear, Q2 = body.settings.q_quadratic;
-  const V mass =
-      lanes_of<W>([&](int l) { return body.element_mass[std::size_t(s.lane_element(g, l))]; });
-  rho = mass / volume;
+  rho = element_lanes<W>(body.element_mass, s, g) / volume;
   const V L_c = s.L_c[g], tr_D = s.tr_D[g];
   const V q_raw = rho * L_c * (Q2 * L_c * tr_D * tr_D - (Q1 * c) * tr_D);
   const V q = tr_D >= V{} ? V{} : q_raw;
@@ -998,8 +1021,7 @@ FeStepResult internal_forces(FeBody& body, NodeSet& nodes, double dt, bool lanes
       const int end = body.node_elem_offsets[local + 1];
       Vec3 sum = Vec3::Zero();
       for (int k = begin; k < end; ++k) {
-        const std::size_t entry = std::size_t(body.node_elem_entries[static_cast<std::size_t>(k)]);
-        const double* fa = &body.elem_force[body.force_index(entry >> 3, int(entry & 7), 0)];
+        const double* fa = &body.elem_force[body.node_force_offsets[static_cast<std::size_t>(k)]];
         sum.x() += fa[0];
         sum.y() += fa[fe_force_lanes];
         if (hex) sum.z() += fa[2 * fe_force_lanes];

@@ -66,6 +66,7 @@ struct FeBody {
   std::vector<double> element_mass;      // kg (2D: per radian)
   std::vector<int> node_elem_offsets;    // CSR node -> (element * 8 + local node), local to
   std::vector<int> node_elem_entries;    //   the body's node range, for a deterministic gather
+  std::vector<std::uint32_t> node_force_offsets;  // per CSR entry: force_index(e, a, 0)
   // 1 at an element e (e a multiple of fe_force_lanes) that starts a run:
   // elements e .. e + 7 all exist and each local node a of element e + l is
   // node conn[e][a] + l. The element loop loads such a run's node positions
