@@ -633,6 +633,9 @@ TEST(fe_body, lumped_mass_equals_density_times_volume_3d) {
       const int entry = body.node_elem_entries[static_cast<std::size_t>(k)];
       EXPECT_EQ(static_cast<std::size_t>(body.conn[static_cast<std::size_t>(entry / 8)][entry % 8]),
                 body.node_begin + i);
+      // The gather's offset is that entry's force record, x component.
+      EXPECT_EQ(body.node_force_offsets[static_cast<std::size_t>(k)],
+                body.force_index(static_cast<std::size_t>(entry / 8), entry % 8, 0));
     }
   }
 }
