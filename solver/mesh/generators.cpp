@@ -498,22 +498,27 @@ HexMesh hex_cylinder(double radius, double z_min, double z_max, int elements_acr
       ogrid_disc(radius, elements_across_radius, sector == Sector::quarter, sector != Sector::full);
   const std::vector<double> z =
       uniform_or_graded(z_min, z_max, n_z, axial.enabled, axial.focus.z(), axial.ratio);
+  // Numbered along the axis first (node (v, k) is v (n_z + 1) + k, element
+  // (q, k) is q n_z + k): consecutive elements of a column have consecutive
+  // nodes, the node runs the element loop loads as whole vectors
+  // (FeBody::node_run); the O-grid's rows are too short for that.
   HexMesh m;
   const int n2 = int(s.nodes.size());
   m.nodes.reserve(std::size_t(n2) * (n_z + 1));
   m.node_boundary.reserve(m.nodes.capacity());
-  for (int k = 0; k <= n_z; ++k)
-    for (int v = 0; v < n2; ++v) {
+  for (int v = 0; v < n2; ++v)
+    for (int k = 0; k <= n_z; ++k) {
       m.nodes.emplace_back(s.nodes[v].x(), s.nodes[v].y(), z[k]);
       m.node_boundary.push_back(s.bits[v] | (k == 0 ? boundary_z_min : 0u) |
                                 (k == n_z ? boundary_z_max : 0u));
     }
   m.hexes.reserve(s.quads.size() * n_z);
-  for (int k = 0; k < n_z; ++k)
-    for (const auto& q : s.quads) {
-      const int b = k * n2, t = (k + 1) * n2;
-      m.hexes.push_back(
-          {q[0] + b, q[1] + b, q[2] + b, q[3] + b, q[0] + t, q[1] + t, q[2] + t, q[3] + t});
+  const int stride = n_z + 1;
+  for (const auto& q : s.quads)
+    for (int k = 0; k < n_z; ++k) {
+      m.hexes.push_back({q[0] * stride + k, q[1] * stride + k, q[2] * stride + k, q[3] * stride + k,
+                         q[0] * stride + k + 1, q[1] * stride + k + 1, q[2] * stride + k + 1,
+                         q[3] * stride + k + 1});
     }
   add_boundary_faces(m);
   return m;
