@@ -515,10 +515,11 @@ SPLAT_LANE_INLINE void load_group_nodes(const FeBody& body, const NodeSet& nodes
 template <int W, int C, int N, class Field, class Scratch>
 SPLAT_LANE_INLINE void store_group_forces(FeBody& body, int g, const Scratch& s, const Field& f) {
   if (s.run[g] && s.full(g)) {
-    const std::size_t e0 = std::size_t(s.element[g * W]);
+    // The record's rows follow one another: node a's component i is row a C + i.
+    double* record = &body.elem_force[body.force_index(std::size_t(s.element[g * W]), 0, 0)];
     for (int a = 0; a < N; ++a)
       for (int i = 0; i < C; ++i)
-        std::memcpy(&body.elem_force[body.force_index(e0, a, i)], &f.u[i][a], sizeof(Lane<W>));
+        std::memcpy(record + (a * C + i) * W, &f.u[i][a], sizeof(Lane<W>));
     return;
   }
   for (int l = 0; l < W; ++l) {
