@@ -724,8 +724,9 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
     // steps and the viscous coefficient on whole lanes.
     const V h = cbrt_positive_refine(
         volume, lanes_of<W>([&](int l) { return cbrt_positive_estimate(volume[l]); }));
-    V coefficient =
-        hex8_viscous_hourglass_coefficient_of_cbrt(c_hg, rho, body.constants.wave_speed, h);
+    V coefficient = stiffness ? V{}
+                              : hex8_viscous_hourglass_coefficient_of_cbrt(
+                                    c_hg, rho, body.constants.wave_speed, h);
     for (int l = 0; l < W; ++l) {
       const std::size_t e = std::size_t(s.lane_element(g, l));
       if (!s.real(g, l)) {
@@ -843,8 +844,9 @@ SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std:
     const std::array<V, 4> gamma = quad4_axisym_hourglass_vector_cm(xs[g], gr);
     // kappa (stiffness) or a_h (viscous): quad4_axisym_*_hourglass_coefficient,
     // the same operations, the viscous one on whole lanes.
-    V coefficient = quad4_axisym_viscous_hourglass_coefficient_t(
-        c_hg, rho, body.constants.wave_speed, gr.rbar, gr.area);
+    V coefficient = stiffness ? V{}
+                              : quad4_axisym_viscous_hourglass_coefficient_t(
+                                    c_hg, rho, body.constants.wave_speed, gr.rbar, gr.area);
     for (int l = 0; l < W; ++l) {
       const std::size_t e = std::size_t(s.lane_element(g, l));
       if (!s.real(g, l)) {
