@@ -13,6 +13,7 @@
 #include "solver/fe/fe_body.hpp"
 #include "solver/fe/hex8.hpp"
 #include "solver/fe/quad4_axisym.hpp"
+#include "solver/mesh/generators.hpp"
 #include "support/materials.hpp"
 
 namespace splat {
@@ -335,6 +336,13 @@ TEST(fe_element_lanes, node_runs_are_the_records_within_one_row) {
                                    no_damage(), FeSettings{}, Vec3::Zero(), 300.0, 1, nodes);
   EXPECT_GT(count(quad), 0);
   EXPECT_EQ(count(quad), expected(quad.num_elements(), 19));
+  // hex_cylinder is numbered along the axis first: its columns of 16 elements
+  // are the rows here.
+  const HexMesh cylinder_mesh = hex_cylinder(1e-3, 0.0, 4e-3, 4, 16, Sector::quarter, Grading{});
+  const FeBody cylinder = make_fe_body("c", cylinder_mesh, jc_copper(), no_damage(), FeSettings{},
+                                       Vec3::Zero(), 300.0, 1, nodes);
+  EXPECT_GT(count(cylinder), 0);
+  EXPECT_EQ(count(cylinder), expected(cylinder.num_elements(), 16));
 }
 
 }  // namespace
