@@ -32,7 +32,7 @@
 //   plastic_fraction          elements whose last step was plastic;
 //   material_cpu_ns_per_element_step, kernel_cpu_ns_per_element_step
 //                             (1 thread) the split of cpu_ns_per_element_step:
-//                             update_point alone on a copy of the block's
+//                             update_points alone on a copy of the block's
 //                             states taken before the timed steps, as many
 //                             steps with the same strain increments (as
 //                             *_material_only), and the rest (element work:
@@ -40,7 +40,7 @@
 //                             forces, node gather). Only the first depends on
 //                             the material model.
 // The *_material_only benchmarks time the material kernel alone
-// (update_point on the same states with the same strain increment, one
+// (update_points on the same states with the same strain increment, one
 // thread) to give the split between the kernel and the element work.
 //   build/bench/bench_fe_elements --benchmark_repetitions=5
 //     --benchmark_report_aggregates_only=true     (quote the medians)
@@ -198,20 +198,51 @@ void per_unit_counters(benchmark::State& state, const char* unit, double cpu, do
   state.counters[std::string("wall_ns_per_") + unit] = 1e9 * wall / n;
 }
 
+// Material inputs of every element for the block's uniform strain increment,
+// in update_points' form.
+struct MaterialInputs {
+  std::vector<int> index;
+  std::vector<Mat3> d_eps;
+  std::vector<double> J_new, length;
+  std::vector<PointUpdateResult> out;
+};
+
+MaterialInputs material_inputs(const Block& b) {
+  const FeBody& body = b.body;
+  MaterialInputs in;
+  const Mat3 D = 0.5 * (b.L + b.L.transpose());  // no spin in uniaxial compression
+  for (std::size_t e = 0; e < body.num_elements(); ++e) {
+    in.index.push_back(static_cast<int>(e));
+    in.d_eps.push_back(b.dt * D);
+    in.J_new.push_back(body.volume[e] / body.volume0[e]);
+    in.length.push_back(body.char_length[e]);
+  }
+  in.out.resize(in.index.size());
+  return in;
+}
+
+// One material update of every element: update_points (8 points per SIMD
+// lane group, as the element loop's lanes) in calls of 64 points.
+void update_all(FeBody& body, double dt, MaterialInputs& in) {
+  constexpr std::size_t chunk = 64;
+  for (std::size_t k = 0; k < in.index.size(); k += chunk) {
+    const std::size_t n = std::min(chunk, in.index.size() - k);
+    update_points(body.material, body.constants, body.switches, body.state.data(), &in.index[k], n,
+                  &in.d_eps[k], &in.J_new[k], dt, &in.length[k], &in.out[k]);
+  }
+}
+
 // CPU time of `steps` material updates of every element of a copy of `b`
-// (update_point with the block's uniform strain increment, as run_material), s.
+// (update_all), s.
 double material_cpu_seconds(Block b, bool plastic, benchmark::IterationCount steps) {
-  FeBody& body = b.body;
+  MaterialInputs in = material_inputs(b);
+  MaterialInputs reversed = in;
+  for (Mat3& d : reversed.d_eps) d = -d;
   const double cpu0 = process_cpu_seconds();
   for (benchmark::IterationCount k = 0; k < steps; ++k) {
-    const Mat3 D = 0.5 * (b.L + b.L.transpose());
-    for (std::size_t e = 0; e < body.num_elements(); ++e) {
-      PointUpdateResult r =
-          update_point(body.material, body.constants, body.switches, body.state[e], b.dt * D,
-                       body.volume[e] / body.volume0[e], b.dt, body.char_length[e]);
-      benchmark::DoNotOptimize(r);
-    }
-    if (!plastic) b.L = -b.L;
+    MaterialInputs& now = plastic || k % 2 == 0 ? in : reversed;
+    update_all(b.body, b.dt, now);
+    benchmark::DoNotOptimize(now.out.data());
   }
   return process_cpu_seconds() - cpu0;
 }
@@ -254,7 +285,7 @@ void run_internal_forces(benchmark::State& state, bool axisymmetric, bool plasti
   state.counters["return_iterations"] = iterations;
 }
 
-// The material kernel alone (update_point, not part of the element code) on
+// The material kernel alone (update_points, not part of the element code) on
 // the same block's states with its uniform strain rate, one thread: the part
 // of the element-step cost that is not element work.
 void run_material(benchmark::State& state, bool axisymmetric, bool plastic) {
@@ -262,17 +293,16 @@ void run_material(benchmark::State& state, bool axisymmetric, bool plastic) {
   FeBody& body = b.body;
   long long iterations = 0;
   const double cpu0 = process_cpu_seconds(), wall0 = wall_seconds();
+  MaterialInputs in = material_inputs(b);
+  MaterialInputs reversed = in;
+  for (Mat3& d : reversed.d_eps) d = -d;
+  bool flip = false;
   for (auto _ : state) {
-    const Mat3 D = 0.5 * (b.L + b.L.transpose());  // no spin in uniaxial compression
-    for (std::size_t e = 0; e < body.num_elements(); ++e) {
-      PointState& st = body.state[e];
-      PointUpdateResult r =
-          update_point(body.material, body.constants, body.switches, st, b.dt * D,
-                       body.volume[e] / body.volume0[e], b.dt, body.char_length[e]);
-      iterations += r.iterations;
-      benchmark::DoNotOptimize(r);
-    }
-    if (!plastic) b.L = -b.L;
+    MaterialInputs& now = flip ? reversed : in;
+    update_all(body, b.dt, now);
+    for (const PointUpdateResult& r : now.out) iterations += r.iterations;
+    benchmark::DoNotOptimize(now.out.data());
+    if (!plastic) flip = !flip;
   }
   const double cpu = process_cpu_seconds() - cpu0, wall = wall_seconds() - wall0;
   per_unit_counters(state, "point_update", cpu, wall, 1, body.num_elements());

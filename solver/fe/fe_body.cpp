@@ -15,11 +15,12 @@
 #include <limits>
 #include <stdexcept>
 
+#include "solver/common/simd_lanes.hpp"
 #include "solver/fe/bulk_viscosity.hpp"
 #include "solver/fe/hex8.hpp"
 #include "solver/fe/quad4_axisym.hpp"
-#include "solver/fe/simd_lanes.hpp"
 #include "solver/material/damage.hpp"
+#include "solver/material/point_update_fast.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -438,6 +439,8 @@ struct BlockScratch {
   double q_power[block_size];   // bulk-viscosity power, W
   double hg_power[block_size];  // hourglass power, W
   // Inputs and results of the block's one material call.
+  // Largest return-mapping iteration count of the points the lanes advanced.
+  int lane_iterations = 0;
   int mat_count = 0;
   int mat_index[block_size];
   Mat3 d_eps[block_size];
@@ -536,6 +539,7 @@ SPLAT_LANE_INLINE void list_active(const FeBody& body, std::size_t begin, std::s
                                    Scratch& s) {
   s.count = 0;
   s.mat_count = 0;
+  s.lane_iterations = 0;
   for (std::size_t e = begin; e < end; ++e)
     if (body.active[e]) s.element[s.count++] = static_cast<int>(e);
 }
@@ -575,15 +579,39 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) d_eps[i][j] = dt * D[i][j];
   const V J_new = volume / element_lanes<W>(body.volume0, s, g);
+  // The material update of the lanes point_update_fast covers, here; the
+  // others are listed for the block's update_points call (phase b). Either
+  // way each point gets update_point's bits.
+  PointFields<V> f;
+  V de[6];
+  for (int k = 0; k < 6; ++k) {
+    f.s[k] = S[sym_row[k]][sym_col[k]];
+    de[k] = d_eps[sym_row[k]][sym_col[k]];
+  }
+  for_each_point_field(f, [&](V& v, double PointState::*field) {
+    v = lanes_of<W>([&](int l) { return body.state[std::size_t(s.lane_element(g, l))].*field; });
+  });
+  LaneMask<V> plastic;
+  const LaneMask<V> done =
+      point_update_fast(body.material, body.constants, body.switches, f, de, J_new, dt, plastic);
   for (int l = 0; l < W; ++l) {
     if (!s.real(g, l)) continue;
     const int e = s.element[g * W + l];
-    Mat3& st_s = body.state[static_cast<std::size_t>(e)].s;
-    Mat3& de = s.d_eps[s.mat_count];
+    PointState& st = body.state[static_cast<std::size_t>(e)];
+    if (done[l]) {
+      for (int k = 0; k < 6; ++k) {
+        st.s(sym_row[k], sym_col[k]) = f.s[k][l];
+        st.s(sym_col[k], sym_row[k]) = f.s[k][l];
+      }
+      for_each_point_field(f, [&](V& v, double PointState::*field) { st.*field = v[l]; });
+      if (plastic[l]) s.lane_iterations = 1;
+      continue;
+    }
+    Mat3& de_l = s.d_eps[s.mat_count];
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) {
-        if (!Scratch::axisymmetric || (i == 2) == (j == 2)) st_s(i, j) = S[i][j][l];
-        de(i, j) = d_eps[i][j][l];
+        if (!Scratch::axisymmetric || (i == 2) == (j == 2)) st.s(i, j) = S[i][j][l];
+        de_l(i, j) = d_eps[i][j][l];
       }
     s.mat_index[s.mat_count] = e;
     s.J_new[s.mat_count] = J_new[l];
@@ -595,6 +623,7 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
 // Phase (b): the material update of the block's valid elements in one call.
 template <class Scratch>
 SPLAT_LANE_INLINE void material_block(FeBody& body, double dt, Scratch& s, BlockSums& sums) {
+  sums.max_iterations = std::max(sums.max_iterations, s.lane_iterations);
   if (!(dt > 0.0) || s.mat_count == 0) return;
   update_points(body.material, body.constants, body.switches, body.state.data(), s.mat_index,
                 static_cast<std::size_t>(s.mat_count), s.d_eps, s.J_new, dt, s.length, s.mat_out);

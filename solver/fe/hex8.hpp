@@ -58,8 +58,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "solver/common/simd_lanes.hpp"
 #include "solver/common/types.hpp"
-#include "solver/fe/simd_lanes.hpp"
 
 namespace splat {
 

@@ -44,8 +44,8 @@
 #include <array>
 #include <cmath>
 
+#include "solver/common/simd_lanes.hpp"
 #include "solver/common/types.hpp"
-#include "solver/fe/simd_lanes.hpp"
 
 namespace splat {
 

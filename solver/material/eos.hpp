@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/common/simd_lanes.hpp"
 #include "solver/material/material.hpp"
 
 namespace splat {
@@ -25,20 +26,30 @@ struct EosSplit {
   double gamma_e;  // -
 };
 
-inline EosSplit eos_split(const EosParams& eos, double K, double rho0, double J) {
+// p_cold of eos_split on the number type V (double or lanes); gamma_e, the
+// same for every J, is set aside.
+template <class V>
+SPLAT_LANE_INLINE V eos_cold_pressure(const EosParams& eos, double K, double rho0, const V& J,
+                                      double& gamma_e) {
   if (eos.model == EosModel::linear || !eos.mie_gruneisen) {
-    return {-K * std::log(J), 0.0};
+    gamma_e = 0.0;
+    return -K * lane_log(J);
   }
   const MieGruneisenParams& mg = *eos.mie_gruneisen;
-  const double mu = 1.0 / J - 1.0;
+  gamma_e = mg.gamma0;
+  const V mu = 1.0 / J - 1.0;
   const double rc2 = rho0 * mg.c0 * mg.c0;
-  if (mu <= 0.0) {
-    return {rc2 * mu, mg.gamma0};
-  }
   // The Hugoniot's denominator vanishes at mu = 1/(s-1) (a compression ratio
   // no impact below 3000 m/s reaches); keep it away from zero.
-  const double denom = std::max(1.0 - (mg.s - 1.0) * mu, 0.1);
-  return {rc2 * mu * (1.0 + (1.0 - 0.5 * mg.gamma0) * mu) / (denom * denom), mg.gamma0};
+  const V denom = lane_max(1.0 - (mg.s - 1.0) * mu, V{} + 0.1);
+  const V hugoniot = rc2 * mu * (1.0 + (1.0 - 0.5 * mg.gamma0) * mu) / (denom * denom);
+  return mu <= 0.0 ? rc2 * mu : hugoniot;
+}
+
+inline EosSplit eos_split(const EosParams& eos, double K, double rho0, double J) {
+  EosSplit split{0.0, 0.0};
+  split.p_cold = eos_cold_pressure(eos, K, rho0, J, split.gamma_e);
+  return split;
 }
 
 inline double apply_tension_damage(double p, double D) {

@@ -29,22 +29,9 @@ JcSeries jc_series(const JohnsonCookParams& jc) {
 
 double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcSeries& series,
                                        double theta_old, double T_old, double T_new) {
-  const double m = jc.m;
-  const double span = jc.T_melt - jc.T_ref;
-  const double above = T_old - jc.T_ref;
-  if (above > 0.0 && T_new >= T_old && T_new - jc.T_ref < span && m <= 7.0 && span > 0.0) {
-    // w <= 1/16: (1 + w)^m amplifies the rounding of p_old at most 1.6-fold.
-    const double w = (T_new - T_old) / above;
-    const double p_old = 1.0 - theta_old;  // T*_old^m
-    const double* c = series.thermal;
-    const double w2 = w * w, w4 = w2 * w2;
-    if (w <= 0.0625 && p_old * std::abs(c[7]) * (w4 * w2 * w) <= 1e-17) {
-      const double q1 = c[1] + c[2] * w, q3 = c[3] + c[4] * w, q5 = c[5] + c[6] * w;
-      const double sum = w * ((q1 + q3 * w2) + q5 * w4);  // (1 + w)^m - 1
-      return 1.0 - (p_old + p_old * sum);
-    }
-  }
-  return jc_thermal_factor(jc, true, T_new);
+  bool ok = false;
+  const double theta = jc_thermal_series(jc, series, theta_old, T_old, T_new, ok);
+  return ok ? theta : jc_thermal_factor(jc, true, T_new);
 }
 
 FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwitches& sw,
@@ -66,29 +53,6 @@ FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwit
   if (sw.rate_hardening && eps_dot_p > jc.eps_dot_0) d_rate = jc.C / eps_dot_p;
   return {hard * rate * theta, d_hard * rate * theta, hard * d_rate * theta};
 }
-
-namespace {
-
-// B (eps_p + dp)^n from P0 = B eps_p^n (eps_p > 0) and u = dp / eps_p >= 0
-// by the binomial series of degree 8, (1 + u)^n = sum binom(n, k) u^k: no
-// exp or log. Its remainder is binom(n, 9) u^9 (1 + xi)^(n - 9) <=
-// |binom(n, 9)| u^9 for n <= 9; the series is used only where that, times
-// P0, is below 1e-17 of A + P0 (the rounding of exp(n log ep) is ~1e-16),
-// else this returns a negative value and the caller evaluates exp and log.
-double hardening_power_series(const JohnsonCookParams& jc, const JcSeries& series, double P0,
-                              double u) {
-  if (!(u >= 0.0) || !(jc.n <= 9.0)) return -1.0;
-  const double* c = series.hardening;
-  const double u2 = u * u, u4 = u2 * u2;
-  if (P0 * std::abs(c[9]) * (u4 * u4 * u) > 1e-17 * (jc.A + P0)) return -1.0;
-  // Estrin's scheme: sum_{k=1..8} c_k u^k with a short dependency chain.
-  const double q1 = c[1] + c[2] * u, q3 = c[3] + c[4] * u, q5 = c[5] + c[6] * u,
-               q7 = c[7] + c[8] * u;
-  const double sum = u * ((q1 + q3 * u2) + (q5 + q7 * u2) * u4);  // (1 + u)^n - 1
-  return P0 + P0 * sum;
-}
-
-}  // namespace
 
 ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_hardening,
                                     double q_trial, double G_d, double eps_p, double dt,
@@ -143,10 +107,11 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     if (ep > 0.0) {
       inv_ep = 1.0 / ep;
       // B ep^n; exp and log cost less than pow.
+      bool series_ok = false;
       double b_pw = first && eps_p > 0.0
-                        ? hardening_power_series(jc, *series, hard0 - jc.A, dp / eps_p)
-                        : -1.0;
-      if (b_pw < 0.0) b_pw = jc.B * std::exp(jc.n * std::log(ep));
+                        ? jc_hardening_series(jc, *series, hard0 - jc.A, dp / eps_p, series_ok)
+                        : 0.0;
+      if (!series_ok) b_pw = jc.B * std::exp(jc.n * std::log(ep));
       hard += b_pw;
       d_hard = jc.n * b_pw * inv_ep;
       dd_hard = (jc.n - 1.0) * d_hard * inv_ep;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/common/simd_lanes.hpp"
 #include "solver/material/material.hpp"
 
 namespace splat {
@@ -47,6 +48,48 @@ JcSeries jc_series(const JohnsonCookParams& jc);
 // 1e-16 to theta.
 double jc_thermal_factor_after_heating(const JohnsonCookParams& jc, const JcSeries& series,
                                        double theta_old, double T_old, double T_new);
+
+// The series of jc_thermal_factor_after_heating on the number type V (double
+// or lanes): its value, and in `ok` where it applies (elsewhere the value is
+// meaningless and jc_thermal_factor is needed).
+template <class V>
+SPLAT_LANE_INLINE V jc_thermal_series(const JohnsonCookParams& jc, const JcSeries& series,
+                                      const V& theta_old, const V& T_old, const V& T_new,
+                                      LaneMask<V>& ok) {
+  const double m = jc.m;
+  const double span = jc.T_melt - jc.T_ref;
+  const V above = T_old - jc.T_ref;
+  // w <= 1/16: (1 + w)^m amplifies the rounding of p_old at most 1.6-fold.
+  const V w = (T_new - T_old) / above;
+  const V p_old = 1.0 - theta_old;  // T*_old^m
+  const double* c = series.thermal;
+  const V w2 = w * w, w4 = w2 * w2;
+  ok = above > 0.0 && T_new >= T_old && T_new - jc.T_ref < span && w <= 0.0625 &&
+       p_old * std::abs(c[7]) * (w4 * w2 * w) <= 1e-17;
+  if (!(m <= 7.0 && span > 0.0)) ok = LaneMask<V>{};
+  const V q1 = c[1] + c[2] * w, q3 = c[3] + c[4] * w, q5 = c[5] + c[6] * w;
+  const V sum = w * ((q1 + q3 * w2) + q5 * w4);  // (1 + w)^m - 1
+  return 1.0 - (p_old + p_old * sum);
+}
+
+// B (eps_p + dp)^n from P0 = B eps_p^n (eps_p > 0) and u = dp / eps_p >= 0
+// by the binomial series of degree 8, (1 + u)^n = sum binom(n, k) u^k: no
+// exp or log. Its remainder is binom(n, 9) u^9 (1 + xi)^(n - 9) <=
+// |binom(n, 9)| u^9 for n <= 9; `ok` marks where that, times P0, is below
+// 1e-17 of A + P0 (the rounding of exp(n log ep) is ~1e-16); elsewhere the
+// caller evaluates exp and log.
+template <class V>
+SPLAT_LANE_INLINE V jc_hardening_series(const JohnsonCookParams& jc, const JcSeries& series,
+                                        const V& P0, const V& u, LaneMask<V>& ok) {
+  const double* c = series.hardening;
+  const V u2 = u * u, u4 = u2 * u2;
+  ok = u >= 0.0 && !(P0 * std::abs(c[9]) * (u4 * u4 * u) > 1e-17 * (jc.A + P0));
+  if (!(jc.n <= 9.0)) ok = LaneMask<V>{};
+  // Estrin's scheme: sum_{k=1..8} c_k u^k with a short dependency chain.
+  const V q1 = c[1] + c[2] * u, q3 = c[3] + c[4] * u, q5 = c[5] + c[6] * u, q7 = c[7] + c[8] * u;
+  const V sum = u * ((q1 + q3 * u2) + (q5 + q7 * u2) * u4);  // (1 + u)^n - 1
+  return P0 + P0 * sum;
+}
 
 inline double jc_rate_factor(const JohnsonCookParams& jc, bool enabled, double eps_dot_p) {
   if (!enabled || eps_dot_p <= jc.eps_dot_0) return 1.0;

@@ -1,12 +1,19 @@
+// The lane vectors of update_points stay inside its target_clones loop
+// (everything they pass through is forced inline), so GCC's note that passing
+// them by value changes the ABI between instruction sets does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "solver/material/point_update.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "solver/material/damage.hpp"
 #include "solver/material/elasticity.hpp"
 #include "solver/material/eos.hpp"
 #include "solver/material/johnson_cook.hpp"
+#include "solver/material/point_update_fast.hpp"
 
 namespace splat {
 
@@ -135,10 +142,46 @@ void update_damage(const Material& m, const ModelSwitches& sw, PointState& st, d
 
 }  // namespace
 
+namespace {
+
+bool is_symmetric(const Mat3& a) {
+  return a(0, 1) == a(1, 0) && a(0, 2) == a(2, 0) && a(1, 2) == a(2, 1);
+}
+
+PointFields<double> point_fields(const PointState& st) {
+  PointFields<double> f;
+  for (int k = 0; k < 6; ++k) f.s[k] = st.s(sym_row[k], sym_col[k]);
+  for_each_point_field(f, [&](double& v, double PointState::*field) { v = st.*field; });
+  return f;
+}
+
+void set_point_fields(PointFields<double>& f, PointState& st) {
+  for (int k = 0; k < 6; ++k) {
+    st.s(sym_row[k], sym_col[k]) = f.s[k];
+    st.s(sym_col[k], sym_row[k]) = f.s[k];
+  }
+  for_each_point_field(f, [&](double& v, double PointState::*field) { st.*field = v; });
+}
+
+}  // namespace
+
 PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
                                const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
                                double J_new, double dt, double length) {
   PointUpdateResult result;
+  // Most steps: point_update_fast (the same choice and bits as the lanes of
+  // update_points and of the FE element loop).
+  if (is_symmetric(st.s) && is_symmetric(d_eps)) {
+    PointFields<double> f = point_fields(st);
+    double de[6];
+    for (int k = 0; k < 6; ++k) de[k] = d_eps(sym_row[k], sym_col[k]);
+    bool plastic = false;
+    if (point_update_fast(m, mc, sw, f, de, J_new, dt, plastic)) {
+      set_point_fields(f, st);
+      result.iterations = plastic ? 1 : 0;
+      return result;
+    }
+  }
   const double keep = 1.0 - st.D;
   const double G_d = keep * mc.G;
   const Mat3 sigma_old = st.cauchy();
@@ -221,10 +264,65 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   return result;
 }
 
-void update_points(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
-                   PointState* states, const int* index, std::size_t n, const Mat3* d_eps,
-                   const double* J_new, double dt, const double* length, PointUpdateResult* out) {
-  for (std::size_t k = 0; k < n; ++k) {
+namespace {
+
+constexpr int points_per_lane_group = 8;
+using PointLane = Lane<points_per_lane_group>;
+
+template <class F>
+SPLAT_LANE_INLINE PointLane point_lanes(F&& f) {
+  return PointLane{f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)};
+}
+
+}  // namespace
+
+// Groups of 8 points in lanes (point_update_fast); a group's points that the
+// fast path does not cover, and the points past the last whole group, go
+// through update_point one by one.
+__attribute__((target_clones("avx512f", "avx2", "default"))) void update_points(
+    const Material& m, const MaterialConstants& mc, const ModelSwitches& sw, PointState* states,
+    const int* index, std::size_t n, const Mat3* d_eps, const double* J_new, double dt,
+    const double* length, PointUpdateResult* out) {
+  constexpr int W = points_per_lane_group;
+  std::size_t k0 = 0;
+  for (; k0 + W <= n; k0 += W) {
+    PointState* st[W];
+    for (int l = 0; l < W; ++l) st[l] = &states[index[k0 + std::size_t(l)]];
+    bool symmetric = true;
+    for (int l = 0; l < W; ++l)
+      symmetric = symmetric && is_symmetric(st[l]->s) && is_symmetric(d_eps[k0 + std::size_t(l)]);
+    LaneMask<PointLane> done{}, plastic{};
+    if (symmetric) {
+      PointFields<PointLane> f;
+      PointLane de[6];
+      for (int k = 0; k < 6; ++k) {
+        f.s[k] = point_lanes([&](int l) { return st[l]->s(sym_row[k], sym_col[k]); });
+        de[k] =
+            point_lanes([&](int l) { return d_eps[k0 + std::size_t(l)](sym_row[k], sym_col[k]); });
+      }
+      for_each_point_field(f, [&](PointLane& v, double PointState::*field) {
+        v = point_lanes([&](int l) { return st[l]->*field; });
+      });
+      PointLane J;
+      std::memcpy(&J, J_new + k0, sizeof J);
+      done = point_update_fast(m, mc, sw, f, de, J, dt, plastic);
+      for (int l = 0; l < W; ++l) {
+        if (!done[l]) continue;
+        PointState& p = *st[l];
+        for (int k = 0; k < 6; ++k) {
+          p.s(sym_row[k], sym_col[k]) = f.s[k][l];
+          p.s(sym_col[k], sym_row[k]) = f.s[k][l];
+        }
+        for_each_point_field(f, [&](PointLane& v, double PointState::*field) { p.*field = v[l]; });
+        out[k0 + std::size_t(l)] = {plastic[l] ? 1 : 0, true};
+      }
+    }
+    for (int l = 0; l < W; ++l) {
+      const std::size_t k = k0 + std::size_t(l);
+      if (!done[l]) out[k] = update_point(m, mc, sw, *st[l], d_eps[k], J_new[k], dt, length[k]);
+    }
+  }
+  for (std::size_t k = k0; k < n; ++k) {
     out[k] = update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k]);
   }
 }

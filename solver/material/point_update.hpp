@@ -81,10 +81,9 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
 // The material update of a block of n points, as the element and particle
 // loops call it (one call per block): states[index[k]] advances as
 // update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k])
-// and out[k] is its result. A point by point loop: a batched version in SIMD
-// lanes, made bit-identical to update_point, was measured at 77 ns per plastic
-// and 26 ns per elastic point against this loop's 80 and 17 (bit identity
-// forced a slower scalar path), so it was not kept.
+// and out[k] is its result, to the bit. The index entries are distinct.
+// Groups of 8 points run point_update_fast (point_update_fast.hpp) in SIMD
+// lanes; the points it does not cover run update_point.
 void update_points(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
                    PointState* states, const int* index, std::size_t n, const Mat3* d_eps,
                    const double* J_new, double dt, const double* length, PointUpdateResult* out);

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "solver/common/parallel.hpp"
-#include "solver/fe/simd_lanes.hpp"
+#include "solver/common/simd_lanes.hpp"
 #include "solver/material/damage.hpp"
 
 #ifdef _OPENMP

@@ -61,6 +61,43 @@ requires is_lane<V> SPLAT_LANE_INLINE V lane_sqrt(const V& a) {
   return r;
 }
 
+// The comparison result of T: bool for a double, a vector of 64-bit integers
+// (0 or -1 per lane) for a lane vector. `c ? a : b`, `&&`, `||` and `!` work
+// on both alike.
+template <class T>
+using LaneMask = decltype(T{} < T{});
+
+// Whether any lane of a mask is set.
+inline bool lane_any(bool m) {
+  return m;
+}
+template <class M>
+requires(!std::is_same_v<M, bool>) SPLAT_LANE_INLINE bool lane_any(const M& m) {
+  bool any = false;
+  for (int l = 0; l < static_cast<int>(sizeof(M) / sizeof(m[0])); ++l) any = any || m[l] != 0;
+  return any;
+}
+
+// |a| lane by lane (clears the sign bit, as std::abs does).
+inline double lane_abs(double a) {
+  return std::abs(a);
+}
+template <class V>
+requires is_lane<V> SPLAT_LANE_INLINE V lane_abs(const V& a) {
+  return a < V{} ? -a : a + 0.0;  // -0 + 0 = +0, as std::abs(-0)
+}
+
+// std::log lane by lane (libm's, so each lane rounds as the scalar call).
+inline double lane_log(double a) {
+  return std::log(a);
+}
+template <class V>
+requires is_lane<V> SPLAT_LANE_INLINE V lane_log(const V& a) {
+  V r;
+  for (int l = 0; l < static_cast<int>(sizeof(V) / sizeof(double)); ++l) r[l] = std::log(a[l]);
+  return r;
+}
+
 // cond > 0 ? value : 0, lane by lane.
 inline double lane_if_positive(double cond, double value) {
   return cond > 0.0 ? value : 0.0;

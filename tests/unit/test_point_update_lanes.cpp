@@ -1,0 +1,184 @@
+// update_points (groups of 8 points in SIMD lanes through point_update_fast,
+// the rest through update_point) against update_point called point by point:
+// the same bits in every field of every point, for elastic steps, steps that
+// continue plastic flow, the onset of yield, tension, both EOS, every model
+// switch, and damage. And point_update_fast itself: it must cover most steps
+// of continued plastic flow (else the lanes would buy nothing), and where it
+// covers one, give what the general path gives to rounding.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "solver/material/point_update.hpp"
+#include "solver/material/point_update_fast.hpp"
+#include "tests/support/materials.hpp"
+
+namespace splat {
+namespace {
+
+constexpr double dt = 2e-9;  // s
+
+Material copper_mg() {
+  Material m = test_support::jc_copper();
+  m.eos.model = EosModel::mie_gruneisen;
+  m.eos.mie_gruneisen = MieGruneisenParams{3940.0, 1.49, 2.02};
+  return m;
+}
+
+Material copper_damage() {
+  Material m = test_support::jc_copper();
+  m.damage.initiation = DamageInitiation::johnson_cook;
+  m.damage.jc = {0.54, 4.89, -3.03, 0.014, 1.12};
+  m.damage.evolution = DamageEvolution::plastic_strain;
+  m.damage.eps_p_max = 0.5;
+  return m;
+}
+
+// A symmetric strain increment: uniaxial compression at `rate` plus a random
+// part of relative size `noise`.
+Mat3 strain_increment(std::mt19937_64& rng, double rate, double noise) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Mat3 d = Mat3::Zero();
+  d(0, 0) = -rate * dt;
+  d(1, 1) = d(2, 2) = 0.3 * rate * dt;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) {
+      d(i, j) += noise * rate * dt * u(rng);
+      d(j, i) = d(i, j);
+    }
+  return d;
+}
+
+bool same_bits(const PointState& a, const PointState& b) {
+  static constexpr double PointState::*fields[] = {&PointState::p,
+                                                   &PointState::J,
+                                                   &PointState::e,
+                                                   &PointState::eps_p,
+                                                   &PointState::eps_dot_p,
+                                                   &PointState::T,
+                                                   &PointState::D,
+                                                   &PointState::omega,
+                                                   &PointState::eps_p_init,
+                                                   &PointState::sigma_y,
+                                                   &PointState::sigma_y_static,
+                                                   &PointState::hardening,
+                                                   &PointState::strength_scale,
+                                                   &PointState::sigma_y_peak,
+                                                   &PointState::plastic_work,
+                                                   &PointState::sigma_y_static_peak};
+  bool same = std::memcmp(a.s.data(), b.s.data(), sizeof(double) * 9) == 0;
+  for (auto field : fields)
+    same = same && std::memcmp(&(a.*field), &(b.*field), sizeof(double)) == 0;
+  return same;
+}
+
+// n points, each with its own loading history (rates from elastic to far
+// past yield, some reversed), advanced `steps` steps both ways.
+void expect_lanes_match_points(const Material& m, const ModelSwitches& sw, int steps,
+                               unsigned seed) {
+  const MaterialConstants mc = derive_constants(m);
+  constexpr int n = 61;  // 7 whole groups of 8 and a remainder of 5
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<PointState> a(n, initial_point_state(m, sw, 300.0, 0.0));
+  std::vector<double> rate(n);
+  std::vector<int> index(n);
+  for (int k = 0; k < n; ++k) {
+    rate[k] = std::pow(10.0, 2.0 + 6.0 * u(rng)) * (u(rng) < 0.2 ? -1.0 : 1.0);  // 1/s
+    index[k] = (k * 17) % n;  // not in storage order
+  }
+  std::vector<PointState> b = a;
+  std::vector<Mat3> d_eps(n);
+  std::vector<double> J_new(n), length(n, 1e-5);
+  std::vector<PointUpdateResult> out(n);
+  for (int step = 0; step < steps; ++step) {
+    for (int k = 0; k < n; ++k) {
+      const int i = index[k];
+      // Reverse the load of some points now and then (unloading, reloading).
+      const double r = (step / 50) % 3 == 2 && i % 2 == 0 ? -rate[i] : rate[i];
+      d_eps[k] = strain_increment(rng, r, 0.2);
+      J_new[k] = a[i].J * std::exp(d_eps[k].trace());
+    }
+    update_points(m, mc, sw, a.data(), index.data(), n, d_eps.data(), J_new.data(), dt,
+                  length.data(), out.data());
+    for (int k = 0; k < n; ++k) {
+      const int i = index[k];
+      const PointUpdateResult r = update_point(m, mc, sw, b[i], d_eps[k], J_new[k], dt, length[k]);
+      ASSERT_TRUE(same_bits(a[i], b[i])) << "point " << i << " step " << step;
+      ASSERT_EQ(out[k].iterations, r.iterations);
+      ASSERT_EQ(out[k].converged, r.converged);
+    }
+  }
+}
+
+TEST(point_update_lanes, match_update_point_linear_eos) {
+  expect_lanes_match_points(test_support::jc_copper(), test_support::no_damage(), 400, 1);
+}
+
+TEST(point_update_lanes, match_update_point_mie_gruneisen) {
+  expect_lanes_match_points(copper_mg(), test_support::no_damage(), 400, 2);
+}
+
+TEST(point_update_lanes, match_update_point_with_each_switch_off) {
+  for (int off = 0; off < 3; ++off) {
+    ModelSwitches sw = test_support::no_damage();
+    if (off == 0) sw.thermal_softening = false;
+    if (off == 1) sw.rate_hardening = false;
+    if (off == 2) sw.adiabatic_heating = false;
+    SCOPED_TRACE(off);
+    expect_lanes_match_points(copper_mg(), sw, 200, 3 + unsigned(off));
+  }
+}
+
+TEST(point_update_lanes, match_update_point_with_damage) {
+  expect_lanes_match_points(copper_damage(), ModelSwitches{}, 400, 7);
+}
+
+// Steady plastic flow at 1e5 /s (increments that vary by 0.05 % from step to
+// step): after the onset, the fast path covers nearly every step, and its
+// result equals the general path's (the same point advanced by
+// johnson_cook_return with its full iteration) within the return's
+// tolerance, 1e-11 of the trial stress. (Where the increment varies by a few
+// per cent per step, the rate term's Taylor bound fails and the general path
+// takes the step.)
+TEST(point_update_lanes, fast_path_covers_continued_plastic_flow) {
+  const Material m = copper_mg();
+  const ModelSwitches sw = test_support::no_damage();
+  const MaterialConstants mc = derive_constants(m);
+  PointState st = initial_point_state(m, sw, 300.0, 0.0);
+  std::mt19937_64 rng(11);
+  int covered = 0, plastic_steps = 0;
+  for (int step = 0; step < 2000; ++step) {
+    const Mat3 d = strain_increment(rng, 1e5, 0.0005);
+    const double J_new = st.J * std::exp(d.trace());
+    PointFields<double> f;
+    for (int k = 0; k < 6; ++k) f.s[k] = st.s(sym_row[k], sym_col[k]);
+    for_each_point_field(f, [&](double& v, double PointState::*field) { v = st.*field; });
+    double de[6];
+    for (int k = 0; k < 6; ++k) de[k] = d(sym_row[k], sym_col[k]);
+    bool plastic = false;
+    const bool done = point_update_fast(m, mc, sw, f, de, J_new, dt, plastic);
+    // The general path: the return from its linearised guess, no series.
+    PointState general = st;
+    general.eps_dot_p = 0.0;  // no previous increment: no shortcut applies
+    const PointUpdateResult rg = update_point(m, mc, sw, general, d, J_new, dt, 1e-5);
+    update_point(m, mc, sw, st, d, J_new, dt, 1e-5);
+    if (rg.iterations == 0) continue;
+    ++plastic_steps;
+    if (!done) continue;
+    ++covered;
+    EXPECT_NEAR(f.eps_p, general.eps_p, 1e-9 * general.eps_p) << step;
+    EXPECT_NEAR(f.s[0], general.s(0, 0), 1e-10 * std::abs(general.s(0, 0))) << step;
+    EXPECT_NEAR(f.temp, general.T, 1e-12 * general.T) << step;
+  }
+  EXPECT_GT(plastic_steps, 1900);
+  EXPECT_GT(covered, plastic_steps * 9 / 10);
+  std::printf("fast path covered %d of %d plastic steps\n", covered, plastic_steps);
+}
+
+}  // namespace
+}  // namespace splat
