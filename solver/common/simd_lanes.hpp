@@ -51,14 +51,21 @@ requires is_lane<V> SPLAT_LANE_INLINE V lane_max(const V& a, const V& b) {
   return a < b ? b : a;
 }
 
+// f applied to each lane of a: each lane rounds as the scalar call does
+// (GCC makes one vector instruction of it where it can, as for sqrt).
+template <class V, class F>
+requires is_lane<V> SPLAT_LANE_INLINE V lane_map(const V& a, F f) {
+  V r;
+  for (int l = 0; l < static_cast<int>(sizeof(V) / sizeof(double)); ++l) r[l] = f(a[l]);
+  return r;
+}
+
 inline double lane_sqrt(double a) {
   return std::sqrt(a);
 }
 template <class V>
 requires is_lane<V> SPLAT_LANE_INLINE V lane_sqrt(const V& a) {
-  V r;
-  for (int l = 0; l < static_cast<int>(sizeof(V) / sizeof(double)); ++l) r[l] = std::sqrt(a[l]);
-  return r;
+  return lane_map(a, [](double x) { return std::sqrt(x); });
 }
 
 // The comparison result of T: bool for a double, a vector of 64-bit integers
@@ -87,15 +94,13 @@ requires is_lane<V> SPLAT_LANE_INLINE V lane_abs(const V& a) {
   return a < V{} ? -a : a + 0.0;  // -0 + 0 = +0, as std::abs(-0)
 }
 
-// std::log lane by lane (libm's, so each lane rounds as the scalar call).
+// std::log lane by lane.
 inline double lane_log(double a) {
   return std::log(a);
 }
 template <class V>
 requires is_lane<V> SPLAT_LANE_INLINE V lane_log(const V& a) {
-  V r;
-  for (int l = 0; l < static_cast<int>(sizeof(V) / sizeof(double)); ++l) r[l] = std::log(a[l]);
-  return r;
+  return lane_map(a, [](double x) { return std::log(x); });
 }
 
 // cond > 0 ? value : 0, lane by lane.

@@ -438,15 +438,14 @@ struct BlockScratch {
   double dt_e[block_size];      // CFL bound, s
   double q_power[block_size];   // bulk-viscosity power, W
   double hg_power[block_size];  // hourglass power, W
-  // Inputs and results of the block's one material call.
   // Largest return-mapping iteration count of the points the lanes advanced.
   int lane_iterations = 0;
+  // Inputs of the general material update of the points the lanes left.
   int mat_count = 0;
   int mat_index[block_size];
   Mat3 d_eps[block_size];
   double J_new[block_size];
   double length[block_size];
-  PointUpdateResult mat_out[block_size];
 
   // Element of lane l of group g (the last one repeated past the end).
   int lane_element(int g, int l) const { return element[std::min(g * W + l, count - 1)]; }
@@ -580,8 +579,8 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
     for (int j = 0; j < 3; ++j) d_eps[i][j] = dt * D[i][j];
   const V J_new = volume / element_lanes<W>(body.volume0, s, g);
   // The material update of the lanes point_update_fast covers, here; the
-  // others are listed for the block's update_points call (phase b). Either
-  // way each point gets update_point's bits.
+  // others are listed for update_point_general (phase b). Either way each
+  // point gets update_point's bits.
   PointFields<V> f;
   V de[6];
   for (int k = 0; k < 6; ++k) {
@@ -620,16 +619,19 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
   }
 }
 
-// Phase (b): the material update of the block's valid elements in one call.
+// Phase (b): the material update of the block's elements that the lanes of
+// phase (a) left (point_update_fast said "not done": the general path).
 template <class Scratch>
 SPLAT_LANE_INLINE void material_block(FeBody& body, double dt, Scratch& s, BlockSums& sums) {
   sums.max_iterations = std::max(sums.max_iterations, s.lane_iterations);
-  if (!(dt > 0.0) || s.mat_count == 0) return;
-  update_points(body.material, body.constants, body.switches, body.state.data(), s.mat_index,
-                static_cast<std::size_t>(s.mat_count), s.d_eps, s.J_new, dt, s.length, s.mat_out);
+  if (!(dt > 0.0)) return;
   for (int k = 0; k < s.mat_count; ++k) {
-    sums.max_iterations = std::max(sums.max_iterations, s.mat_out[k].iterations);
-    sums.failed = sums.failed || !s.mat_out[k].converged;
+    const PointUpdateResult r =
+        update_point_general(body.material, body.constants, body.switches,
+                             body.state[static_cast<std::size_t>(s.mat_index[k])], s.d_eps[k],
+                             s.J_new[k], dt, s.length[k]);
+    sums.max_iterations = std::max(sums.max_iterations, r.iterations);
+    sums.failed = sums.failed || !r.converged;
   }
 }
 

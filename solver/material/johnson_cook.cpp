@@ -146,8 +146,7 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     // Newton's needs two), Newton's where the curvature term is not small.
     const double slope = -three_g - scale * (d_hard * rate + hard * d_rate);
     const double curv = -scale * (dd_hard * rate + 2.0 * d_hard * d_rate + hard * dd_rate);
-    const double gc = g * curv, s2 = 2.0 * slope * slope;
-    double next = std::abs(gc) < 0.5 * s2 ? dp - 2.0 * g * slope / (s2 - gc) : dp - g / slope;
+    double next = jc_return_step(dp, g, slope, curv);
     // Bisect when the step leaves the bracket, stalls, or meets an unbounded slope.
     if (!(next > lo && next < hi) || next == dp) {
       dp = 0.5 * (lo + hi);
@@ -169,16 +168,12 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     const double rel_h = std::abs(step) * inv_ep;
     const bool rate_side = !rate_on || ((x > 1.0) == (next * inv_ref > 1.0));
     const double rel_r = rate_on && x > 1.0 ? std::abs(step) * inv_dp : 0.0;
-    const double n3 = (jc.n + 3.0) * (jc.n + 3.0), h2 = rel_h * rel_h, r2 = rel_r * rel_r;
-    const double trunc = n3 * n3 * h2 * h2 + std::abs(jc.C) * r2 * r2;
+    const double trunc = jc_taylor_truncation(jc, rel_h, rel_r);
     if (rate_side && trunc <= 1e-14) {
       // Third derivatives: (n - 2) dd_hard / ep and -2 dd_rate / dp.
-      const double d3_hard = (jc.n - 2.0) * dd_hard * inv_ep;
-      const double d3_rate = -2.0 * dd_rate * inv_dp;
-      const double hard_n =
-          hard + step * (d_hard + step * (0.5 * dd_hard + step * (d3_hard * (1.0 / 6.0))));
-      const double rate_n =
-          rate + step * (d_rate + step * (0.5 * dd_rate + step * (d3_rate * (1.0 / 6.0))));
+      double hard_n = 0.0, rate_n = 0.0;
+      jc_taylor_terms(jc, step, hard, d_hard, dd_hard, inv_ep, rate, d_rate, dd_rate, inv_dp,
+                      hard_n, rate_n);
       const double hard_rate_n = hard_n * rate_n;
       const double g_n = q_trial - three_g * next - scale * hard_rate_n;
       if (std::abs(g_n) + scale * hard_rate_n * trunc <= tol_g) {

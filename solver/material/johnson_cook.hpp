@@ -104,6 +104,43 @@ inline double jc_hardening(const JohnsonCookParams& jc, double eps_p) {
 FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwitches& sw,
                                     double eps_p, double eps_dot_p, double T);
 
+// Pieces of the radial return below shared with its lanes
+// (point_update_fast.hpp), on the number type V (double or lanes).
+//
+// Halley's step dp - 2 g g' / (2 g'^2 - g g'') (cubic convergence), Newton's
+// dp - g / g' where the curvature term g g'' is not small.
+template <class V>
+SPLAT_LANE_INLINE V jc_return_step(const V& dp, const V& g, const V& slope, const V& curv) {
+  const V gc = g * curv, s2 = 2.0 * slope * slope;
+  return lane_abs(gc) < 0.5 * s2 ? dp - 2.0 * g * slope / (s2 - gc) : dp - g / slope;
+}
+
+// Bound on the truncation error, relative to the flow stress, of the
+// third-order Taylor expansions of A + B eps^n and 1 + C ln(x) over a step of
+// relative size rel_h (to eps_p + dp) and rel_r (to dp): (n + 3)^4 rel_h^4 +
+// |C| rel_r^4 (see johnson_cook_return).
+template <class V>
+SPLAT_LANE_INLINE V jc_taylor_truncation(const JohnsonCookParams& jc, const V& rel_h,
+                                         const V& rel_r) {
+  const double n3 = (jc.n + 3.0) * (jc.n + 3.0);
+  const V h2 = rel_h * rel_h, r2 = rel_r * rel_r;
+  return n3 * n3 * h2 * h2 + std::abs(jc.C) * r2 * r2;
+}
+
+// The hardening and rate terms a step on, by those expansions, from their
+// values and first two derivatives at dp (third derivatives (n - 2) dd_hard /
+// ep and -2 dd_rate / dp; inv_ep = 1 / ep, inv_dp = 1 / dp).
+template <class V>
+SPLAT_LANE_INLINE void jc_taylor_terms(const JohnsonCookParams& jc, const V& step, const V& hard,
+                                       const V& d_hard, const V& dd_hard, const V& inv_ep,
+                                       const V& rate, const V& d_rate, const V& dd_rate,
+                                       const V& inv_dp, V& hard_n, V& rate_n) {
+  const V d3_hard = (jc.n - 2.0) * dd_hard * inv_ep;
+  const V d3_rate = -2.0 * dd_rate * inv_dp;
+  hard_n = hard + step * (d_hard + step * (0.5 * dd_hard + step * (d3_hard * (1.0 / 6.0))));
+  rate_n = rate + step * (d_rate + step * (0.5 * dd_rate + step * (d3_rate * (1.0 / 6.0))));
+}
+
 struct ReturnMapResult {
   double delta_eps_p = 0.0;  // plastic strain increment, -
   double hard_rate = 0.0;    // (A + B eps_p^n)(1 + C ln eps_dot*) at the solution, Pa

@@ -168,7 +168,6 @@ void set_point_fields(PointFields<double>& f, PointState& st) {
 PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
                                const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
                                double J_new, double dt, double length) {
-  PointUpdateResult result;
   // Most steps: point_update_fast (the same choice and bits as the lanes of
   // update_points and of the FE element loop).
   if (is_symmetric(st.s) && is_symmetric(d_eps)) {
@@ -178,10 +177,16 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
     bool plastic = false;
     if (point_update_fast(m, mc, sw, f, de, J_new, dt, plastic)) {
       set_point_fields(f, st);
-      result.iterations = plastic ? 1 : 0;
-      return result;
+      return {plastic ? 1 : 0, true};
     }
   }
+  return update_point_general(m, mc, sw, st, d_eps, J_new, dt, length);
+}
+
+PointUpdateResult update_point_general(const Material& m, const MaterialConstants& mc,
+                                       const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
+                                       double J_new, double dt, double length) {
+  PointUpdateResult result;
   const double keep = 1.0 - st.D;
   const double G_d = keep * mc.G;
   const Mat3 sigma_old = st.cauchy();
@@ -317,9 +322,14 @@ __attribute__((target_clones("avx512f", "avx2", "default"))) void update_points(
         out[k0 + std::size_t(l)] = {plastic[l] ? 1 : 0, true};
       }
     }
+    // The lanes have tested these points already (none, if a group's inputs
+    // were not symmetric).
     for (int l = 0; l < W; ++l) {
       const std::size_t k = k0 + std::size_t(l);
-      if (!done[l]) out[k] = update_point(m, mc, sw, *st[l], d_eps[k], J_new[k], dt, length[k]);
+      if (done[l]) continue;
+      out[k] = symmetric
+                   ? update_point_general(m, mc, sw, *st[l], d_eps[k], J_new[k], dt, length[k])
+                   : update_point(m, mc, sw, *st[l], d_eps[k], J_new[k], dt, length[k]);
     }
   }
   for (std::size_t k = k0; k < n; ++k) {

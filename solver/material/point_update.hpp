@@ -78,6 +78,14 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
                                const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
                                double J_new, double dt, double length);
 
+// update_point for a point that point_update_fast (point_update_fast.hpp)
+// does not cover, without testing that again: for callers that ran the fast
+// path on the same inputs (in lanes) and got "not done". update_point is
+// this after that test.
+PointUpdateResult update_point_general(const Material& m, const MaterialConstants& mc,
+                                       const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
+                                       double J_new, double dt, double length);
+
 // The material update of a block of n points, as the element and particle
 // loops call it (one call per block): states[index[k]] advances as
 // update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k])

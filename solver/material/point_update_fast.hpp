@@ -133,21 +133,15 @@ SPLAT_LANE_INLINE LaneMask<V> point_update_fast(const Material& m, const Materia
     // hardening and rate terms are exact to 1e-14 ends the return.
     const V slope = -three_g - scale * (d_hard * rate0 + hard0 * d_rate);
     const V curv = -scale * (dd_hard * rate0 + 2.0 * d_hard * d_rate + hard0 * dd_rate);
-    const V gc = g * curv, s2 = 2.0 * slope * slope;
-    const V next = lane_abs(gc) < 0.5 * s2 ? dp0 - 2.0 * g * slope / (s2 - gc) : dp0 - g / slope;
+    const V next = jc_return_step(dp0, g, slope, curv);
     const V step = next - dp0;
     const V rel_h = lane_abs(step) * inv_ep;
     const M rate_side = rate_on ? x_above == (next * inv_ref > 1.0) : !M{};
     const V rel_r = rate_m ? lane_abs(step) * inv_dp : V{};
-    const double n3 = (jc.n + 3.0) * (jc.n + 3.0);
-    const V h2 = rel_h * rel_h, r2 = rel_r * rel_r;
-    const V trunc = n3 * n3 * h2 * h2 + std::abs(jc.C) * r2 * r2;
-    const V d3_hard = (jc.n - 2.0) * dd_hard * inv_ep;
-    const V d3_rate = -2.0 * dd_rate * inv_dp;
-    const V hard_n =
-        hard0 + step * (d_hard + step * (0.5 * dd_hard + step * (d3_hard * (1.0 / 6.0))));
-    const V rate_n =
-        rate0 + step * (d_rate + step * (0.5 * dd_rate + step * (d3_rate * (1.0 / 6.0))));
+    const V trunc = jc_taylor_truncation(jc, rel_h, rel_r);
+    V hard_n, rate_n;
+    jc_taylor_terms(jc, step, hard0, d_hard, dd_hard, inv_ep, rate0, d_rate, dd_rate, inv_dp,
+                    hard_n, rate_n);
     const V hard_rate_n = hard_n * rate_n;
     const V g_n = q_trial - three_g * next - scale * hard_rate_n;
     const M taylor = next > lo && next < hi && next != dp0 && rate_side && trunc <= 1e-14 &&
