@@ -470,7 +470,31 @@ SPLAT_LANE_INLINE Lane<W> element_lanes(const std::vector<double>& field, const 
     std::memcpy(&v, &field[std::size_t(s.element[p])], sizeof v);
     return v;
   }
-  return lanes_of<W>([&](int l) { return field[std::size_t(s.lane_element(g, l))]; });
+  return lanes_of<W>([&](int l)
+                         SPLAT_LANE_LAMBDA { return field[std::size_t(s.lane_element(g, l))]; });
+}
+
+// The material states of lane group g (the block's last element repeated in
+// the lanes past its end).
+template <int W, class Scratch>
+SPLAT_LANE_INLINE void group_states(FeBody& body, const Scratch& s, int g, PointState* st[W]) {
+  for (int l = 0; l < W; ++l) st[l] = &body.state[std::size_t(s.lane_element(g, l))];
+}
+
+// One field, or one stress entry, of those states. Plain loops, not lanes_of:
+// in the large block loops GCC left the lambda of a pointer-to-member load out
+// of line, compiled for the baseline instruction set and called lane by lane.
+template <int W>
+SPLAT_LANE_INLINE Lane<W> state_lanes(PointState* const st[W], double PointState::*field) {
+  Lane<W> v;
+  for (int l = 0; l < W; ++l) v[l] = st[l]->*field;
+  return v;
+}
+template <int W>
+SPLAT_LANE_INLINE Lane<W> stress_entry_lanes(PointState* const st[W], int i, int j) {
+  Lane<W> v;
+  for (int l = 0; l < W; ++l) v[l] = st[l]->s(i, j);
+  return v;
 }
 
 // Positions and velocities of the nodes of lane group g (components 0 .. C - 1
@@ -505,8 +529,10 @@ SPLAT_LANE_INLINE void load_group_nodes(const FeBody& body, const NodeSet& nodes
   for (int l = 0; l < W; ++l) cn[l] = &body.conn[std::size_t(s.lane_element(g, l))];
   for (int a = 0; a < N; ++a)
     for (int i = 0; i < C; ++i) {
-      x.u[i][a] = lanes_of<W>([&](int l) { return nodes.x[std::size_t((*cn[l])[a])][i]; });
-      v.u[i][a] = lanes_of<W>([&](int l) { return nodes.v[std::size_t((*cn[l])[a])][i]; });
+      x.u[i][a] = lanes_of<W>(
+          [&](int l) SPLAT_LANE_LAMBDA { return nodes.x[std::size_t((*cn[l])[a])][i]; });
+      v.u[i][a] = lanes_of<W>(
+          [&](int l) SPLAT_LANE_LAMBDA { return nodes.v[std::size_t((*cn[l])[a])][i]; });
     }
 }
 
@@ -560,12 +586,13 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
   V Q[3][3];
   hughes_winget_rotation_cm<V>(0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
                                0.5 * (L[1][0] - L[0][1]), dt, Q);
+  PointState* st[W];
+  group_states<W>(body, s, g, st);
   V S[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      S[i][j] = Scratch::axisymmetric && (i == 2) != (j == 2)
-                    ? V{}
-                    : lanes_of<W>([&](int l) { return body.state[s.lane_element(g, l)].s(i, j); });
+      S[i][j] =
+          Scratch::axisymmetric && (i == 2) != (j == 2) ? V{} : stress_entry_lanes<W>(st, i, j);
   rotate_symmetric_cm<V>(Q, S);
   V D[3][3];
   for (int i = 0; i < 3; ++i)
@@ -587,29 +614,29 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
     f.s[k] = S[sym_row[k]][sym_col[k]];
     de[k] = d_eps[sym_row[k]][sym_col[k]];
   }
-  for_each_point_field(f, [&](V& v, double PointState::*field) {
-    v = lanes_of<W>([&](int l) { return body.state[std::size_t(s.lane_element(g, l))].*field; });
-  });
-  LaneMask<V> plastic;
-  const LaneMask<V> done =
-      point_update_fast(body.material, body.constants, body.switches, f, de, J_new, dt, plastic);
+  for_each_point_field(
+      f, [&](V& v, double PointState::*field) SPLAT_LANE_LAMBDA { v = state_lanes<W>(st, field); });
+  V evaluations;
+  const LaneMask<V> done = point_update_fast(body.material, body.constants, body.switches, f, de,
+                                             J_new, dt, evaluations);
   for (int l = 0; l < W; ++l) {
     if (!s.real(g, l)) continue;
     const int e = s.element[g * W + l];
-    PointState& st = body.state[static_cast<std::size_t>(e)];
+    PointState& point = body.state[static_cast<std::size_t>(e)];
     if (done[l]) {
       for (int k = 0; k < 6; ++k) {
-        st.s(sym_row[k], sym_col[k]) = f.s[k][l];
-        st.s(sym_col[k], sym_row[k]) = f.s[k][l];
+        point.s(sym_row[k], sym_col[k]) = f.s[k][l];
+        point.s(sym_col[k], sym_row[k]) = f.s[k][l];
       }
-      for_each_point_field(f, [&](V& v, double PointState::*field) { st.*field = v[l]; });
-      if (plastic[l]) s.lane_iterations = 1;
+      for_each_point_field(
+          f, [&](V& v, double PointState::*field) SPLAT_LANE_LAMBDA { point.*field = v[l]; });
+      s.lane_iterations = std::max(s.lane_iterations, static_cast<int>(evaluations[l]));
       continue;
     }
     Mat3& de_l = s.d_eps[s.mat_count];
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) {
-        if (!Scratch::axisymmetric || (i == 2) == (j == 2)) st.s(i, j) = S[i][j][l];
+        if (!Scratch::axisymmetric || (i == 2) == (j == 2)) point.s(i, j) = S[i][j][l];
         de_l(i, j) = d_eps[i][j][l];
       }
     s.mat_index[s.mat_count] = e;
@@ -651,16 +678,16 @@ SPLAT_LANE_INLINE void stress_lanes(FeBody& body, int g, const Lane<W>& volume, 
   const V dt_e = L_c / (Qv + lane_sqrt(Qv * Qv + c * c));
   const V q_power = -q * volume * tr_D;
   // sigma = s - p I (off the diagonal s - 0 p = s: the same value).
-  const V pressure =
-      lanes_of<W>([&](int l) { return body.state[std::size_t(s.lane_element(g, l))].p; });
+  PointState* st[W];
+  group_states<W>(body, s, g, st);
+  const V pressure = state_lanes<W>(st, &PointState::p);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       if (Scratch::axisymmetric && (i == 2) != (j == 2)) {
         sigma[i][j] = V{};
         continue;
       }
-      sigma[i][j] =
-          lanes_of<W>([&](int l) { return body.state[std::size_t(s.lane_element(g, l))].s(i, j); });
+      sigma[i][j] = stress_entry_lanes<W>(st, i, j);
       if (i == j) sigma[i][i] = sigma[i][i] - pressure;
     }
   for (int i = 0; i < 3; ++i) sigma[i][i] -= q;
@@ -753,8 +780,9 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
     // kappa (stiffness) or a_h (viscous): hex8_*_hourglass_coefficient, the
     // same operations, with V^(1/3)'s estimate lane by lane and its Halley
     // steps and the viscous coefficient on whole lanes.
-    const V h = cbrt_positive_refine(
-        volume, lanes_of<W>([&](int l) { return cbrt_positive_estimate(volume[l]); }));
+    const V h = cbrt_positive_refine(volume, lanes_of<W>([&](int l) SPLAT_LANE_LAMBDA {
+                                       return cbrt_positive_estimate(volume[l]);
+                                     }));
     V coefficient = stiffness ? V{}
                               : hex8_viscous_hourglass_coefficient_of_cbrt(
                                     c_hg, rho, body.constants.wave_speed, h);
@@ -774,8 +802,9 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
       for (int k = 0; k < 4; ++k) {
         V Qk[3];
         for (int i = 0; i < 3; ++i)
-          Qk[i] =
-              lanes_of<W>([&](int l) { return body.hg[std::size_t(s.lane_element(g, l))][k][i]; });
+          Qk[i] = lanes_of<W>([&](int l) SPLAT_LANE_LAMBDA {
+            return body.hg[std::size_t(s.lane_element(g, l))][k][i];
+          });
         // R Q^k in the order Eigen's 3x3 product sums it (hex8_hourglass_stiffness):
         // rows 0 and 1 in one SSE2 packet, left to right; row 2 as an unrolled
         // reduction, r_0 + (r_1 + r_2).
@@ -893,7 +922,9 @@ SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std:
       const V(&R)[3][3] = s.R[g];
       V Q[2];
       for (int i = 0; i < 2; ++i)
-        Q[i] = lanes_of<W>([&](int l) { return body.hg[std::size_t(s.lane_element(g, l))][0][i]; });
+        Q[i] = lanes_of<W>([&](int l) SPLAT_LANE_LAMBDA {
+          return body.hg[std::size_t(s.lane_element(g, l))][0][i];
+        });
       power = quad4_axisym_hourglass_stiffness_cm(gamma, vs[g], coefficient, dt, R[0][0], R[0][1],
                                                   R[1][0], R[1][1], Q, f);
       for (int l = 0; l < W; ++l) {

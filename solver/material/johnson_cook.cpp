@@ -6,14 +6,15 @@ namespace splat {
 
 namespace {
 
-// binom(a, k), k = 0..K-1 (K <= 10), by the recurrence
+// binom(a, k), k = 0..K-1 (K <= 14), by the recurrence
 // binom(a, k) = binom(a, k - 1) (a - k + 1) / k (reciprocals from a table:
 // no divisions on the chain).
 template <int K>
 void binomial_coefficients(double a, double (&c)[K]) {
-  static_assert(K <= 10);
-  static constexpr double inv[10] = {0.0,       1.0,       1.0 / 2.0, 1.0 / 3.0, 1.0 / 4.0,
-                                     1.0 / 5.0, 1.0 / 6.0, 1.0 / 7.0, 1.0 / 8.0, 1.0 / 9.0};
+  static_assert(K <= 14);
+  static constexpr double inv[14] = {0.0,        1.0,        1.0 / 2.0,  1.0 / 3.0, 1.0 / 4.0,
+                                     1.0 / 5.0,  1.0 / 6.0,  1.0 / 7.0,  1.0 / 8.0, 1.0 / 9.0,
+                                     1.0 / 10.0, 1.0 / 11.0, 1.0 / 12.0, 1.0 / 13.0};
   c[0] = 1.0;
   for (int k = 1; k < K; ++k) c[k] = c[k - 1] * (a - (k - 1)) * inv[k];
 }

@@ -174,10 +174,10 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
     PointFields<double> f = point_fields(st);
     double de[6];
     for (int k = 0; k < 6; ++k) de[k] = d_eps(sym_row[k], sym_col[k]);
-    bool plastic = false;
-    if (point_update_fast(m, mc, sw, f, de, J_new, dt, plastic)) {
+    double evaluations = 0.0;
+    if (point_update_fast(m, mc, sw, f, de, J_new, dt, evaluations)) {
       set_point_fields(f, st);
-      return {plastic ? 1 : 0, true};
+      return {static_cast<int>(evaluations), true};
     }
   }
   return update_point_general(m, mc, sw, st, d_eps, J_new, dt, length);
@@ -296,21 +296,24 @@ __attribute__((target_clones("avx512f", "avx2", "default"))) void update_points(
     bool symmetric = true;
     for (int l = 0; l < W; ++l)
       symmetric = symmetric && is_symmetric(st[l]->s) && is_symmetric(d_eps[k0 + std::size_t(l)]);
-    LaneMask<PointLane> done{}, plastic{};
+    LaneMask<PointLane> done{};
+    PointLane evaluations{};
     if (symmetric) {
       PointFields<PointLane> f;
       PointLane de[6];
       for (int k = 0; k < 6; ++k) {
-        f.s[k] = point_lanes([&](int l) { return st[l]->s(sym_row[k], sym_col[k]); });
-        de[k] =
-            point_lanes([&](int l) { return d_eps[k0 + std::size_t(l)](sym_row[k], sym_col[k]); });
+        f.s[k] =
+            point_lanes([&](int l) SPLAT_LANE_LAMBDA { return st[l]->s(sym_row[k], sym_col[k]); });
+        de[k] = point_lanes([&](int l) SPLAT_LANE_LAMBDA {
+          return d_eps[k0 + std::size_t(l)](sym_row[k], sym_col[k]);
+        });
       }
-      for_each_point_field(f, [&](PointLane& v, double PointState::*field) {
-        v = point_lanes([&](int l) { return st[l]->*field; });
+      for_each_point_field(f, [&](PointLane& v, double PointState::*field) SPLAT_LANE_LAMBDA {
+        v = point_lanes([&](int l) SPLAT_LANE_LAMBDA { return st[l]->*field; });
       });
       PointLane J;
       std::memcpy(&J, J_new + k0, sizeof J);
-      done = point_update_fast(m, mc, sw, f, de, J, dt, plastic);
+      done = point_update_fast(m, mc, sw, f, de, J, dt, evaluations);
       for (int l = 0; l < W; ++l) {
         if (!done[l]) continue;
         PointState& p = *st[l];
@@ -318,8 +321,9 @@ __attribute__((target_clones("avx512f", "avx2", "default"))) void update_points(
           p.s(sym_row[k], sym_col[k]) = f.s[k][l];
           p.s(sym_col[k], sym_row[k]) = f.s[k][l];
         }
-        for_each_point_field(f, [&](PointLane& v, double PointState::*field) { p.*field = v[l]; });
-        out[k0 + std::size_t(l)] = {plastic[l] ? 1 : 0, true};
+        for_each_point_field(
+            f, [&](PointLane& v, double PointState::*field) SPLAT_LANE_LAMBDA { p.*field = v[l]; });
+        out[k0 + std::size_t(l)] = {static_cast<int>(evaluations[l]), true};
       }
     }
     // The lanes have tested these points already (none, if a group's inputs

@@ -10,13 +10,16 @@
 //     evaluation at the previous step's plastic increment, with B eps^n from
 //     the binomial series and the rate factor from the previous step, ending
 //     there or with one Taylor-bounded Halley step (johnson_cook_return's own
-//     early exits), adiabatic heating carried by the thermal series;
+//     early exits), or else the return's second evaluation, at that Halley
+//     step, with the series again (the rate factor by a series of
+//     ln(1 + step / dp)), ending there or with one more Taylor-bounded
+//     Halley step; adiabatic heating carried by the thermal series;
 // both with either EOS and no damage evolution in the step. Everything else
-// (the onset of yield, more than one evaluation, damage initiation or growth,
-// a heating step the series does not cover, no strength left) is reported
-// as not done, and update_point's general path takes the point from its
-// unchanged state. Both paths make the same choice for the same point, so a
-// run's bits do not depend on which of them met a point first.
+// (the onset of yield, more than two evaluations, damage initiation or
+// growth, a heating step the series does not cover, no strength left) is
+// reported as not done, and update_point's general path takes the point from
+// its unchanged state. Both paths make the same choice for the same point,
+// so a run's bits do not depend on which of them met a point first.
 #pragma once
 
 #include "solver/common/simd_lanes.hpp"
@@ -59,14 +62,15 @@ SPLAT_LANE_INLINE void for_each_point_field(PointFields<V>& f, F&& fn) {
 }
 
 // Advances the points of `st` whose step the fast path covers and returns
-// them (true lanes); `plastic` marks the plastic ones among them. In the
-// other lanes st holds no meaningful values. de = dt sym(L), symmetric as s;
-// the arguments are update_point's (no length: no damage here).
+// them (true lanes); `evaluations` is the number of return evaluations of
+// each of them (0 elastic, 1 or 2 plastic). In the other lanes st holds no
+// meaningful values. de = dt sym(L), symmetric as s; the arguments are
+// update_point's (no length: no damage here).
 template <class V>
 SPLAT_LANE_INLINE LaneMask<V> point_update_fast(const Material& m, const MaterialConstants& mc,
                                                 const ModelSwitches& sw, PointFields<V>& st,
                                                 const V de[6], const V& J_new, double dt,
-                                                LaneMask<V>& plastic) {
+                                                V& evaluations) {
   using M = LaneMask<V>;
   const JohnsonCookParams& jc = m.strength;
   const V G_d = (1.0 - st.D) * mc.G;
@@ -84,8 +88,9 @@ SPLAT_LANE_INLINE LaneMask<V> point_update_fast(const Material& m, const Materia
   const V q_trial_sq = 1.5 * (((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
                               2.0 * ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]));
   // Yield test on squares (sigma_y_static >= 0).
-  plastic = q_trial_sq > st.sigma_y_static * st.sigma_y_static;
+  const M plastic = q_trial_sq > st.sigma_y_static * st.sigma_y_static;
   M done = !plastic;
+  evaluations = V{};
 
   const V scale = st.strength_scale;  // (1 - D)(1 - T*^m)
   V dp{}, hard = st.hardening, rate = V{} + 1.0, hard_rate{};
@@ -146,11 +151,58 @@ SPLAT_LANE_INLINE LaneMask<V> point_update_fast(const Material& m, const Materia
     const V g_n = q_trial - three_g * next - scale * hard_rate_n;
     const M taylor = next > lo && next < hi && next != dp0 && rate_side && trunc <= 1e-14 &&
                      lane_abs(g_n) + scale * hard_rate_n * trunc <= tol_g;
-    ok = ok && (at_guess || taylor);
-    dp = plastic ? (at_guess ? dp0 : next) : V{};
-    hard = plastic ? (at_guess ? hard0 : hard_n) : hard;
-    rate = at_guess ? rate0 : rate_n;
-    hard_rate = at_guess ? hard_rate0 : hard_rate_n;
+    const M first = at_guess || taylor;
+    // The return's second evaluation, at next, where the first did not end
+    // it (the increment changed by more than the Taylor bound allows): B
+    // eps^n again by the series, now in next / eps_p, and the rate factor
+    // from the first's by ln(next / dp0) = ln(1 + step / dp0) by its series.
+    // It ends there, or after one more Taylor-bounded Halley step.
+    M second = ok && !first && next > lo && next < hi && next != dp0 && rate_side;
+    V dp2 = next, hard2 = hard_n, rate2 = rate_n, hard_rate2 = hard_rate_n;
+    if (lane_any(second)) {
+      const V inv_ep1 = 1.0 / (st.eps_p + next);
+      M series1_ok, log_ok;
+      const V b_pw1 =
+          jc_hardening_series(jc, mc.jc_series, st.hardening - jc.A, next / st.eps_p, series1_ok);
+      const V hard1 = jc.A + b_pw1;
+      const V d_hard1 = jc.n * b_pw1 * inv_ep1;
+      const V dd_hard1 = (jc.n - 1.0) * d_hard1 * inv_ep1;
+      const V rate1 = rate_m ? rate0 + jc.C * log1p_series(step * inv_dp, log_ok) : V{} + 1.0;
+      const V inv_dp1 = rate_m ? 1.0 / next : V{};
+      const V d_rate1 = rate_m ? jc.C * inv_dp1 : V{};
+      const V dd_rate1 = rate_m ? -d_rate1 * inv_dp1 : V{};
+      const V hard_rate1 = hard1 * rate1;
+      const V g1 = q_trial - three_g * next - scale * hard_rate1;
+      const V lo1 = g1 > 0.0 ? next : lo;
+      const V hi1 = g1 > 0.0 ? hi : next;
+      const M at_next = lane_abs(g1) <= tol_g || hi1 - lo1 <= 1e-14 * hi1;
+      const V slope1 = -three_g - scale * (d_hard1 * rate1 + hard1 * d_rate1);
+      const V curv1 = -scale * (dd_hard1 * rate1 + 2.0 * d_hard1 * d_rate1 + hard1 * dd_rate1);
+      const V next2 = jc_return_step(next, g1, slope1, curv1);
+      const V step2 = next2 - next;
+      const V rel_h2 = lane_abs(step2) * inv_ep1;
+      const M rate_side2 = rate_on ? x_above == (next2 * inv_ref > 1.0) : !M{};
+      const V rel_r2 = rate_m ? lane_abs(step2) * inv_dp1 : V{};
+      const V trunc2 = jc_taylor_truncation(jc, rel_h2, rel_r2);
+      V hard_n2, rate_n2;
+      jc_taylor_terms(jc, step2, hard1, d_hard1, dd_hard1, inv_ep1, rate1, d_rate1, dd_rate1,
+                      inv_dp1, hard_n2, rate_n2);
+      const V hard_rate_n2 = hard_n2 * rate_n2;
+      const V g_n2 = q_trial - three_g * next2 - scale * hard_rate_n2;
+      const M taylor2 = next2 > lo1 && next2 < hi1 && next2 != next && rate_side2 &&
+                        trunc2 <= 1e-14 && lane_abs(g_n2) + scale * hard_rate_n2 * trunc2 <= tol_g;
+      second = second && series1_ok && (!rate_m || log_ok) && (at_next || taylor2);
+      dp2 = at_next ? next : next2;
+      hard2 = at_next ? hard1 : hard_n2;
+      rate2 = at_next ? rate1 : rate_n2;
+      hard_rate2 = at_next ? hard_rate1 : hard_rate_n2;
+    }
+    ok = ok && (first || second);
+    evaluations = plastic ? (first ? V{} + 1.0 : V{} + 2.0) : V{};
+    dp = plastic ? (at_guess ? dp0 : taylor ? next : dp2) : V{};
+    hard = plastic ? (at_guess ? hard0 : taylor ? hard_n : hard2) : hard;
+    rate = at_guess ? rate0 : taylor ? rate_n : rate2;
+    hard_rate = at_guess ? hard_rate0 : taylor ? hard_rate_n : hard_rate2;
 
     // Radial scaling of the trial deviator onto the yield surface.
     const V factor = lane_max(q_trial - three_g * dp, V{}) / q_trial;

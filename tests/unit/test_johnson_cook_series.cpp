@@ -93,6 +93,41 @@ TEST(johnson_cook_series, continued_flow_return_matches_the_law) {
   }
 }
 
+// The binomial series of degree 12 against B (eps_p + dp)^n by pow, wherever
+// it says it applies, to the rounding of pow and of the series (1e-15 of
+// the hardening term);
+// for copper's n it must apply up to u = dp / eps_p = 0.05 and not at 0.2.
+TEST(johnson_cook_series, hardening_series_is_the_law_where_it_applies) {
+  for (double n : {0.1, 0.31, 0.5, 1.0, 1.7}) {
+    JohnsonCookParams j = copper();
+    j.n = n;
+    const JcSeries series = jc_series(j);
+    for (double eps_p : {1e-4, 0.3, 3.0}) {
+      const double P0 = j.B * std::pow(eps_p, n);
+      int applies = 0;
+      for (int k = 0; k <= 400; ++k) {
+        const double u = 0.25 * k / 400.0;
+        bool ok = false;
+        const double series_value = jc_hardening_series(j, series, P0, u, ok);
+        if (!ok) continue;
+        ++applies;
+        const double law = j.B * std::pow(eps_p * (1.0 + u), n);
+        EXPECT_NEAR(j.A + series_value, j.A + law, 1e-15 * (j.A + law))
+            << n << " " << eps_p << " " << u;
+      }
+      std::printf("n %.2f eps_p %g: the series applies at %d of 401 u in [0, 0.25]\n", n, eps_p,
+                  applies);
+    }
+  }
+  const JohnsonCookParams j = copper();
+  const JcSeries series = jc_series(j);
+  bool ok = false;
+  jc_hardening_series(j, series, j.B * std::pow(0.1, j.n), 0.05, ok);
+  EXPECT_TRUE(ok);
+  jc_hardening_series(j, series, j.B * std::pow(0.1, j.n), 0.2, ok);
+  EXPECT_FALSE(ok);
+}
+
 // 100,000 steps of adiabatic uniaxial compression at 1e5 /s (dt 1e-9 s, total
 // plastic strain 10, heating to 1,190 K): every step after the first few
 // continues plastic flow, so the cached hardening A + B eps_p^n and strength
@@ -123,6 +158,42 @@ TEST(johnson_cook_series, cached_terms_stay_the_law_over_many_plastic_steps) {
   EXPECT_GT(one_step, 90000);
   EXPECT_NEAR(st.hardening, hard, 1e-11 * hard);
   EXPECT_NEAR(st.strength_scale, theta, 1e-11);
+}
+
+// As above, with the strain rate varying by 2 % around 1e5 /s (period 44
+// steps), so that most returns end in the fast path's second evaluation,
+// which carries the rate factor over by the series of ln(1 + step / dp): the
+// cached hardening, strength scale and rate factor sigma_y / sigma_y_static
+// must stay the law at the point's eps_p, T and plastic rate.
+TEST(johnson_cook_series, cached_terms_stay_the_law_when_the_rate_varies) {
+  const Material m = test_support::jc_copper();
+  const ModelSwitches sw = test_support::no_damage();
+  const MaterialConstants mc = derive_constants(m);
+  PointState st = initial_point_state(m, sw, 300.0, 0.0);
+  const double dt = 1e-9;
+  int two_evaluations = 0;
+  for (int k = 0; k < 100000; ++k) {
+    const double rate = 1e5 * (1.0 + 0.02 * std::sin(k / 7.0));
+    Mat3 d_eps = Mat3::Zero();
+    d_eps(2, 2) = -rate * dt;
+    d_eps(0, 0) = d_eps(1, 1) = 0.5 * rate * dt;
+    const PointUpdateResult r = update_point(m, mc, sw, st, d_eps, 1.0, dt, 1e-6);
+    ASSERT_TRUE(r.converged);
+    two_evaluations += r.iterations == 2;
+  }
+  const double hard = jc_hardening(m.strength, st.eps_p);
+  const double theta = jc_thermal_factor(m.strength, true, st.T);
+  const double rate_factor = jc_rate_factor(m.strength, true, st.eps_dot_p);
+  std::printf(
+      "eps_p %.4f, T %.2f K, two-evaluation returns %d; drift: hardening %.2g, scale "
+      "%.2g, rate factor %.2g\n",
+      st.eps_p, st.T, two_evaluations, st.hardening / hard - 1.0, st.strength_scale - theta,
+      st.sigma_y / st.sigma_y_static / rate_factor - 1.0);
+  EXPECT_GT(st.eps_p, 9.0);
+  EXPECT_GT(two_evaluations, 50000);
+  EXPECT_NEAR(st.hardening, hard, 1e-11 * hard);
+  EXPECT_NEAR(st.strength_scale, theta, 1e-11);
+  EXPECT_NEAR(st.sigma_y / st.sigma_y_static, rate_factor, 1e-11 * rate_factor);
 }
 
 }  // namespace
