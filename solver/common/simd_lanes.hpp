@@ -85,9 +85,21 @@ inline bool lane_any(bool m) {
 }
 template <class M>
 requires(!std::is_same_v<M, bool>) SPLAT_LANE_INLINE bool lane_any(const M& m) {
-  bool any = false;
-  for (int l = 0; l < static_cast<int>(sizeof(M) / sizeof(m[0])); ++l) any = any || m[l] != 0;
-  return any;
+  // OR-reduction by halving (log2 W shuffles instead of W lane tests).
+  constexpr int W = static_cast<int>(sizeof(M) / sizeof(m[0]));
+  M r = m;
+  if constexpr (W == 8) {
+    r |= __builtin_shuffle(r, M{4, 5, 6, 7, 0, 1, 2, 3});
+    r |= __builtin_shuffle(r, M{2, 3, 0, 1, 2, 3, 0, 1});
+    r |= __builtin_shuffle(r, M{1, 0, 1, 0, 1, 0, 1, 0});
+  } else if constexpr (W == 4) {
+    r |= __builtin_shuffle(r, M{2, 3, 0, 1});
+    r |= __builtin_shuffle(r, M{1, 0, 1, 0});
+  } else {
+    static_assert(W == 2);
+    r |= __builtin_shuffle(r, M{1, 0});
+  }
+  return r[0] != 0;
 }
 
 // |a| lane by lane (clears the sign bit, as std::abs does).

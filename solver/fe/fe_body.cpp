@@ -428,13 +428,19 @@ struct BlockScratch {
   // r-theta or z-theta terms (they stay exactly zero), so only the r-z block
   // and the hoop entry are loaded and stored.
   static constexpr bool axisymmetric = NodesPerElement == 4;
-  int count = 0;                // active elements of the block
-  int element[block_size];      // element id at position p
-  bool valid[block_size];       // not inverted: runs the material update and forces
-  Lane<W> L_c[groups];          // characteristic length, m
-  Lane<W> tr_D[groups];         // tr(D) at mid-step, 1/s (0 for dt = 0)
-  Lane<W> R[groups][3][3];      // incremental rotation (I for dt = 0)
-  bool run[groups];             // the group's lanes are one node run (FeBody::node_run)
+  int count = 0;            // active elements of the block
+  int element[block_size];  // element id at position p
+  bool valid[block_size];   // not inverted: runs the material update and forces
+  Lane<W> L_c[groups];      // characteristic length, m
+  Lane<W> tr_D[groups];     // tr(D) at mid-step, 1/s (0 for dt = 0)
+  Lane<W> R[groups][3][3];  // incremental rotation (I for dt = 0)
+  bool run[groups];         // the group's lanes are one node run (FeBody::node_run)
+  // The new deviator (xx, yy, zz, xy, yz, xz) and pressure of groups whose
+  // lanes phase (a) all advanced (lanes_done): phase (c) takes them from here
+  // instead of loading them back from the states.
+  bool lanes_done[groups];
+  Lane<W> s_new[groups][6];
+  Lane<W> p_new[groups];
   double dt_e[block_size];      // CFL bound, s
   double q_power[block_size];   // bulk-viscosity power, W
   double hg_power[block_size];  // hourglass power, W
@@ -578,6 +584,7 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
                                         const Lane<W>& volume, double dt, Scratch& s) {
   using V = Lane<W>;
   if (!(dt > 0.0)) {
+    s.lanes_done[g] = false;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) s.R[g][i][j] = V{} + (i == j ? 1.0 : 0.0);
     s.tr_D[g] = V{};
@@ -619,6 +626,13 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
   V evaluations;
   const LaneMask<V> done = point_update_fast(body.material, body.constants, body.switches, f, de,
                                              J_new, dt, evaluations);
+  bool all_valid = true;
+  for (int l = 0; l < W && g * W + l < s.count; ++l) all_valid = all_valid && s.valid[g * W + l];
+  s.lanes_done[g] = all_valid && !lane_any(!done);
+  if (s.lanes_done[g]) {
+    for (int k = 0; k < 6; ++k) s.s_new[g][k] = f.s[k];
+    s.p_new[g] = f.p;
+  }
   for (int l = 0; l < W; ++l) {
     if (!s.real(g, l)) continue;
     const int e = s.element[g * W + l];
@@ -678,16 +692,19 @@ SPLAT_LANE_INLINE void stress_lanes(FeBody& body, int g, const Lane<W>& volume, 
   const V dt_e = L_c / (Qv + lane_sqrt(Qv * Qv + c * c));
   const V q_power = -q * volume * tr_D;
   // sigma = s - p I (off the diagonal s - 0 p = s: the same value).
+  // The new stress from phase (a) where it advanced every lane, else from the
+  // states (the general path of phase (b) wrote some of them).
+  static constexpr int sym_index[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
   PointState* st[W];
-  group_states<W>(body, s, g, st);
-  const V pressure = state_lanes<W>(st, &PointState::p);
+  if (!s.lanes_done[g]) group_states<W>(body, s, g, st);
+  const V pressure = s.lanes_done[g] ? s.p_new[g] : state_lanes<W>(st, &PointState::p);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       if (Scratch::axisymmetric && (i == 2) != (j == 2)) {
         sigma[i][j] = V{};
         continue;
       }
-      sigma[i][j] = stress_entry_lanes<W>(st, i, j);
+      sigma[i][j] = s.lanes_done[g] ? s.s_new[g][sym_index[i][j]] : stress_entry_lanes<W>(st, i, j);
       if (i == j) sigma[i][i] = sigma[i][i] - pressure;
     }
   for (int i = 0; i < 3; ++i) sigma[i][i] -= q;

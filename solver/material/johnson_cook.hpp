@@ -115,7 +115,9 @@ FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwit
 template <class V>
 SPLAT_LANE_INLINE V jc_return_step(const V& dp, const V& g, const V& slope, const V& curv) {
   const V gc = g * curv, s2 = 2.0 * slope * slope;
-  return lane_abs(gc) < 0.5 * s2 ? dp - 2.0 * g * slope / (s2 - gc) : dp - g / slope;
+  // One division for both (lanes would compute both quotients).
+  const auto halley = lane_abs(gc) < 0.5 * s2;
+  return dp - (halley ? 2.0 * g * slope : g) / (halley ? s2 - gc : slope);
 }
 
 // Bound on the truncation error, relative to the flow stress, of the

@@ -24,6 +24,7 @@ MaterialConstants derive_constants(const Material& m) {
   c.rho0 = m.density;
   c.c_p = m.thermal.c_p;
   c.chi = m.thermal.heat_fraction;
+  c.heating = c.rho0 * c.c_p > 0.0 ? c.chi / (c.rho0 * c.c_p) : 0.0;
   double K_wave = c.K;
   if (m.eos.model == EosModel::mie_gruneisen && m.eos.mie_gruneisen) {
     K_wave = std::max(c.K, c.rho0 * m.eos.mie_gruneisen->c0 * m.eos.mie_gruneisen->c0);
@@ -246,7 +247,7 @@ PointUpdateResult update_point_general(const Material& m, const MaterialConstant
     st.plastic_work += J_new * w;
     const bool heated = sw.adiabatic_heating && w > 0.0;
     const double T_old = st.T;
-    if (heated) st.T += mc.chi * w * J_new / (mc.rho0 * mc.c_p);
+    if (heated) st.T += mc.heating * (w * J_new);
     const double D_old = st.D;
     update_damage(m, sw, st, dp, dt, length);
     // Temperature or damage moved: the strength at the end state changes. An

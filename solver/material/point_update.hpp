@@ -19,6 +19,9 @@ struct MaterialConstants {
   double rho0 = 0.0;  // reference density, kg/m^3
   double c_p = 0.0;   // specific heat, J/(kg K)
   double chi = 0.0;   // inelastic heat fraction, -
+  // Temperature rise per unit plastic work per unit reference volume,
+  // chi / (rho0 c_p), K m^3/J (0 with no heat capacity given).
+  double heating = 0.0;
   // Longitudinal (P-wave) speed sqrt((K + 4G/3) / rho0) of the undamaged
   // material, m/s; with a Mie-Grueneisen EOS the bulk part uses max(K, rho0 c0^2).
   double wave_speed = 0.0;

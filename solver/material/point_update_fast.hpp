@@ -213,7 +213,7 @@ SPLAT_LANE_INLINE LaneMask<V> point_update_fast(const Material& m, const Materia
     const V w = scale * hard_rate * dp;  // sigma_y dp, J/m^3 of current volume
     work_total = plastic ? st.plastic_work + J_new * w : st.plastic_work;
     const M heated = sw.adiabatic_heating ? plastic && w > 0.0 : M{};
-    T_new = heated ? st.temp + mc.chi * w * J_new / (mc.rho0 * mc.c_p) : st.temp;
+    T_new = heated ? st.temp + mc.heating * (w * J_new) : st.temp;
     // The end state's strength: the thermal series of an undamaged point;
     // (1 - D) with thermal softening off. Damage evolution is not covered.
     if (sw.thermal_softening) {
