@@ -61,6 +61,48 @@ SPLAT_LANE_INLINE void for_each_point_field(PointFields<V>& f, F&& fn) {
   fn(f.sigma_y_static_peak, &PointState::sigma_y_static_peak);
 }
 
+// One evaluation of the radial return (as johnson_cook_return's loop) at dp,
+// given the hardening and rate terms there and their first two derivatives:
+// the residual g, the bracket [lo, hi] it leaves, whether the return ends at
+// dp, and else its Halley step and whether the Taylor-bounded end there ends
+// it (with the expanded terms).
+template <class V>
+struct ReturnEvaluation {
+  V hard_rate, lo, hi, next, step, hard_n, rate_n, hard_rate_n;
+  LaneMask<V> at_dp, rate_side, taylor;
+};
+
+template <class V>
+SPLAT_LANE_INLINE ReturnEvaluation<V> jc_return_evaluation(
+    const JohnsonCookParams& jc, const V& q_trial, const V& three_g, const V& scale, const V& tol_g,
+    double inv_ref, bool rate_on, const LaneMask<V>& x_above, const LaneMask<V>& rate_m,
+    const V& dp, const V& lo, const V& hi, const V& hard, const V& d_hard, const V& dd_hard,
+    const V& inv_ep, const V& rate, const V& d_rate, const V& dd_rate, const V& inv_dp) {
+  ReturnEvaluation<V> r;
+  r.hard_rate = hard * rate;
+  const V g = q_trial - three_g * dp - scale * r.hard_rate;
+  r.lo = g > 0.0 ? dp : lo;
+  r.hi = g > 0.0 ? hi : dp;
+  r.at_dp = lane_abs(g) <= tol_g || r.hi - r.lo <= 1e-14 * r.hi;
+  // One Halley step that lands where the Taylor expansions of the
+  // hardening and rate terms are exact to 1e-14 ends the return.
+  const V slope = -three_g - scale * (d_hard * rate + hard * d_rate);
+  const V curv = -scale * (dd_hard * rate + 2.0 * d_hard * d_rate + hard * dd_rate);
+  r.next = jc_return_step(dp, g, slope, curv);
+  r.step = r.next - dp;
+  const V rel_h = lane_abs(r.step) * inv_ep;
+  r.rate_side = rate_on ? x_above == (r.next * inv_ref > 1.0) : !LaneMask<V>{};
+  const V rel_r = rate_m ? lane_abs(r.step) * inv_dp : V{};
+  const V trunc = jc_taylor_truncation(jc, rel_h, rel_r);
+  jc_taylor_terms(jc, r.step, hard, d_hard, dd_hard, inv_ep, rate, d_rate, dd_rate, inv_dp,
+                  r.hard_n, r.rate_n);
+  r.hard_rate_n = r.hard_n * r.rate_n;
+  const V g_n = q_trial - three_g * r.next - scale * r.hard_rate_n;
+  r.taylor = r.next > r.lo && r.next < r.hi && r.next != dp && r.rate_side && trunc <= 1e-14 &&
+             lane_abs(g_n) + scale * r.hard_rate_n * trunc <= tol_g;
+  return r;
+}
+
 // Advances the points of `st` whose step the fast path covers and returns
 // them (true lanes); `evaluations` is the number of return evaluations of
 // each of them (0 elastic, 1 or 2 plastic). In the other lanes st holds no
@@ -129,80 +171,47 @@ SPLAT_LANE_INLINE LaneMask<V> point_update_fast(const Material& m, const Materia
     const V rate0 = rate_m ? 1.0 + (rate_guess - 1.0) : V{} + 1.0;
     const V d_rate = rate_m ? jc.C * inv_dp : V{};
     const V dd_rate = rate_m ? -d_rate * inv_dp : V{};
-    const V hard_rate0 = hard0 * rate0;
-    const V g = q_trial - three_g * dp0 - scale * hard_rate0;
-    const V lo = g > 0.0 ? dp0 : V{};
-    const V hi = g > 0.0 ? hi0 : dp0;
-    const M at_guess = lane_abs(g) <= tol_g || hi - lo <= 1e-14 * hi;
-    // One Halley step that lands where the Taylor expansions of the
-    // hardening and rate terms are exact to 1e-14 ends the return.
-    const V slope = -three_g - scale * (d_hard * rate0 + hard0 * d_rate);
-    const V curv = -scale * (dd_hard * rate0 + 2.0 * d_hard * d_rate + hard0 * dd_rate);
-    const V next = jc_return_step(dp0, g, slope, curv);
-    const V step = next - dp0;
-    const V rel_h = lane_abs(step) * inv_ep;
-    const M rate_side = rate_on ? x_above == (next * inv_ref > 1.0) : !M{};
-    const V rel_r = rate_m ? lane_abs(step) * inv_dp : V{};
-    const V trunc = jc_taylor_truncation(jc, rel_h, rel_r);
-    V hard_n, rate_n;
-    jc_taylor_terms(jc, step, hard0, d_hard, dd_hard, inv_ep, rate0, d_rate, dd_rate, inv_dp,
-                    hard_n, rate_n);
-    const V hard_rate_n = hard_n * rate_n;
-    const V g_n = q_trial - three_g * next - scale * hard_rate_n;
-    const M taylor = next > lo && next < hi && next != dp0 && rate_side && trunc <= 1e-14 &&
-                     lane_abs(g_n) + scale * hard_rate_n * trunc <= tol_g;
-    const M first = at_guess || taylor;
+    // First evaluation, at the guess.
+    const ReturnEvaluation<V> e0 = jc_return_evaluation(
+        jc, q_trial, three_g, scale, tol_g, inv_ref, rate_on, x_above, rate_m, dp0, V{}, hi0, hard0,
+        d_hard, dd_hard, inv_ep, rate0, d_rate, dd_rate, inv_dp);
+    const M first = e0.at_dp || e0.taylor;
     // The return's second evaluation, at next, where the first did not end
     // it (the increment changed by more than the Taylor bound allows): B
     // eps^n again by the series, now in next / eps_p, and the rate factor
     // from the first's by ln(next / dp0) = ln(1 + step / dp0) by its series.
     // It ends there, or after one more Taylor-bounded Halley step.
-    M second = ok && !first && next > lo && next < hi && next != dp0 && rate_side;
-    V dp2 = next, hard2 = hard_n, rate2 = rate_n, hard_rate2 = hard_rate_n;
+    const V next = e0.next;
+    M second = ok && !first && next > e0.lo && next < e0.hi && next != dp0 && e0.rate_side;
+    V dp2 = next, hard2 = e0.hard_n, rate2 = e0.rate_n, hard_rate2 = e0.hard_rate_n;
     if (lane_any(second)) {
       const V inv_ep1 = 1.0 / (st.eps_p + next);
-      M series1_ok, log_ok;
+      M series1_ok{}, log_ok{};
       const V b_pw1 =
           jc_hardening_series(jc, mc.jc_series, st.hardening - jc.A, next / st.eps_p, series1_ok);
       const V hard1 = jc.A + b_pw1;
       const V d_hard1 = jc.n * b_pw1 * inv_ep1;
       const V dd_hard1 = (jc.n - 1.0) * d_hard1 * inv_ep1;
-      const V rate1 = rate_m ? rate0 + jc.C * log1p_series(step * inv_dp, log_ok) : V{} + 1.0;
+      const V rate1 = rate_m ? rate0 + jc.C * log1p_series(e0.step * inv_dp, log_ok) : V{} + 1.0;
       const V inv_dp1 = rate_m ? 1.0 / next : V{};
       const V d_rate1 = rate_m ? jc.C * inv_dp1 : V{};
       const V dd_rate1 = rate_m ? -d_rate1 * inv_dp1 : V{};
-      const V hard_rate1 = hard1 * rate1;
-      const V g1 = q_trial - three_g * next - scale * hard_rate1;
-      const V lo1 = g1 > 0.0 ? next : lo;
-      const V hi1 = g1 > 0.0 ? hi : next;
-      const M at_next = lane_abs(g1) <= tol_g || hi1 - lo1 <= 1e-14 * hi1;
-      const V slope1 = -three_g - scale * (d_hard1 * rate1 + hard1 * d_rate1);
-      const V curv1 = -scale * (dd_hard1 * rate1 + 2.0 * d_hard1 * d_rate1 + hard1 * dd_rate1);
-      const V next2 = jc_return_step(next, g1, slope1, curv1);
-      const V step2 = next2 - next;
-      const V rel_h2 = lane_abs(step2) * inv_ep1;
-      const M rate_side2 = rate_on ? x_above == (next2 * inv_ref > 1.0) : !M{};
-      const V rel_r2 = rate_m ? lane_abs(step2) * inv_dp1 : V{};
-      const V trunc2 = jc_taylor_truncation(jc, rel_h2, rel_r2);
-      V hard_n2, rate_n2;
-      jc_taylor_terms(jc, step2, hard1, d_hard1, dd_hard1, inv_ep1, rate1, d_rate1, dd_rate1,
-                      inv_dp1, hard_n2, rate_n2);
-      const V hard_rate_n2 = hard_n2 * rate_n2;
-      const V g_n2 = q_trial - three_g * next2 - scale * hard_rate_n2;
-      const M taylor2 = next2 > lo1 && next2 < hi1 && next2 != next && rate_side2 &&
-                        trunc2 <= 1e-14 && lane_abs(g_n2) + scale * hard_rate_n2 * trunc2 <= tol_g;
-      second = second && series1_ok && (!rate_m || log_ok) && (at_next || taylor2);
-      dp2 = at_next ? next : next2;
-      hard2 = at_next ? hard1 : hard_n2;
-      rate2 = at_next ? rate1 : rate_n2;
-      hard_rate2 = at_next ? hard_rate1 : hard_rate_n2;
+      const ReturnEvaluation<V> e1 = jc_return_evaluation(
+          jc, q_trial, three_g, scale, tol_g, inv_ref, rate_on, x_above, rate_m, next, e0.lo, e0.hi,
+          hard1, d_hard1, dd_hard1, inv_ep1, rate1, d_rate1, dd_rate1, inv_dp1);
+      second = second && series1_ok && (!rate_m || log_ok) && (e1.at_dp || e1.taylor);
+      dp2 = e1.at_dp ? next : e1.next;
+      hard2 = e1.at_dp ? hard1 : e1.hard_n;
+      rate2 = e1.at_dp ? rate1 : e1.rate_n;
+      hard_rate2 = e1.at_dp ? e1.hard_rate : e1.hard_rate_n;
     }
     ok = ok && (first || second);
     evaluations = plastic ? (first ? V{} + 1.0 : V{} + 2.0) : V{};
+    const M at_guess = e0.at_dp, taylor = e0.taylor;
     dp = plastic ? (at_guess ? dp0 : taylor ? next : dp2) : V{};
-    hard = plastic ? (at_guess ? hard0 : taylor ? hard_n : hard2) : hard;
-    rate = at_guess ? rate0 : taylor ? rate_n : rate2;
-    hard_rate = at_guess ? hard_rate0 : taylor ? hard_rate_n : hard_rate2;
+    hard = plastic ? (at_guess ? hard0 : taylor ? e0.hard_n : hard2) : hard;
+    rate = at_guess ? rate0 : taylor ? e0.rate_n : rate2;
+    hard_rate = at_guess ? e0.hard_rate : taylor ? e0.hard_rate_n : hard_rate2;
 
     // Radial scaling of the trial deviator onto the yield surface.
     const V factor = lane_max(q_trial - three_g * dp, V{}) / q_trial;
