@@ -125,31 +125,21 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
       d_rate = jc.C * inv_dp;
       dd_rate = -d_rate * inv_dp;
     }
+    const ReturnEvaluation<double> e = jc_return_evaluation(
+        jc, q_trial, three_g, scale, tol_g, inv_ref, rate_on, x > 1.0, rate_on && x > 1.0, dp, lo,
+        hi, hard, d_hard, dd_hard, inv_ep, rate, d_rate, dd_rate, inv_dp);
     r.hard = hard;
     r.rate = rate;
-    r.hard_rate = hard * rate;
-    const double g = q_trial - three_g * dp - scale * r.hard_rate;
-    if (std::abs(g) <= tol_g) {
+    r.hard_rate = e.hard_rate;
+    lo = e.lo;
+    hi = e.hi;
+    if (e.at_dp) {
       r.converged = true;
       break;
     }
-    if (g > 0.0) {
-      lo = dp;
-    } else {
-      hi = dp;
-    }
-    if (hi - lo <= 1e-14 * hi) {
-      r.converged = true;
-      break;
-    }
-    // Halley's step dp - 2 g g' / (2 g'^2 - g g'') (cubic convergence: from
-    // the previous step's rate one step lands within the tolerance where
-    // Newton's needs two), Newton's where the curvature term is not small.
-    const double slope = -three_g - scale * (d_hard * rate + hard * d_rate);
-    const double curv = -scale * (dd_hard * rate + 2.0 * d_hard * d_rate + hard * dd_rate);
-    double next = jc_return_step(dp, g, slope, curv);
-    // Bisect when the step leaves the bracket, stalls, or meets an unbounded slope.
-    if (!(next > lo && next < hi) || next == dp) {
+    // Bisect when the Halley step (Newton's where the curvature term is not
+    // small) leaves the bracket, stalls, or meets an unbounded slope.
+    if (!(e.next > lo && e.next < hi) || e.next == dp) {
       dp = 0.5 * (lo + hi);
       continue;
     }
@@ -165,28 +155,14 @@ ReturnMapResult johnson_cook_return(const JohnsonCookParams& jc, bool rate_harde
     // tolerance, the step ends the iteration with the expanded terms: no
     // further exp and log, and the terms handed back (and cached by
     // update_point) are those of the law at the returned dp to 1e-14.
-    const double step = next - dp;
-    const double rel_h = std::abs(step) * inv_ep;
-    const bool rate_side = !rate_on || ((x > 1.0) == (next * inv_ref > 1.0));
-    const double rel_r = rate_on && x > 1.0 ? std::abs(step) * inv_dp : 0.0;
-    const double trunc = jc_taylor_truncation(jc, rel_h, rel_r);
-    if (rate_side && trunc <= 1e-14) {
-      // Third derivatives: (n - 2) dd_hard / ep and -2 dd_rate / dp.
-      double hard_n = 0.0, rate_n = 0.0;
-      jc_taylor_terms(jc, step, hard, d_hard, dd_hard, inv_ep, rate, d_rate, dd_rate, inv_dp,
-                      hard_n, rate_n);
-      const double hard_rate_n = hard_n * rate_n;
-      const double g_n = q_trial - three_g * next - scale * hard_rate_n;
-      if (std::abs(g_n) + scale * hard_rate_n * trunc <= tol_g) {
-        r.hard = hard_n;
-        r.rate = rate_n;
-        r.hard_rate = hard_rate_n;
-        r.converged = true;
-        dp = next;
-        break;
-      }
+    dp = e.next;
+    if (e.taylor) {
+      r.hard = e.hard_n;
+      r.rate = e.rate_n;
+      r.hard_rate = e.hard_rate_n;
+      r.converged = true;
+      break;
     }
-    dp = next;
   }
   r.delta_eps_p = dp;
   if (!r.converged) {  // the last Newton or bisection point was not evaluated

@@ -61,48 +61,6 @@ SPLAT_LANE_INLINE void for_each_point_field(PointFields<V>& f, F&& fn) {
   fn(f.sigma_y_static_peak, &PointState::sigma_y_static_peak);
 }
 
-// One evaluation of the radial return (as johnson_cook_return's loop) at dp,
-// given the hardening and rate terms there and their first two derivatives:
-// the residual g, the bracket [lo, hi] it leaves, whether the return ends at
-// dp, and else its Halley step and whether the Taylor-bounded end there ends
-// it (with the expanded terms).
-template <class V>
-struct ReturnEvaluation {
-  V hard_rate, lo, hi, next, step, hard_n, rate_n, hard_rate_n;
-  LaneMask<V> at_dp, rate_side, taylor;
-};
-
-template <class V>
-SPLAT_LANE_INLINE ReturnEvaluation<V> jc_return_evaluation(
-    const JohnsonCookParams& jc, const V& q_trial, const V& three_g, const V& scale, const V& tol_g,
-    double inv_ref, bool rate_on, const LaneMask<V>& x_above, const LaneMask<V>& rate_m,
-    const V& dp, const V& lo, const V& hi, const V& hard, const V& d_hard, const V& dd_hard,
-    const V& inv_ep, const V& rate, const V& d_rate, const V& dd_rate, const V& inv_dp) {
-  ReturnEvaluation<V> r;
-  r.hard_rate = hard * rate;
-  const V g = q_trial - three_g * dp - scale * r.hard_rate;
-  r.lo = g > 0.0 ? dp : lo;
-  r.hi = g > 0.0 ? hi : dp;
-  r.at_dp = lane_abs(g) <= tol_g || r.hi - r.lo <= 1e-14 * r.hi;
-  // One Halley step that lands where the Taylor expansions of the
-  // hardening and rate terms are exact to 1e-14 ends the return.
-  const V slope = -three_g - scale * (d_hard * rate + hard * d_rate);
-  const V curv = -scale * (dd_hard * rate + 2.0 * d_hard * d_rate + hard * dd_rate);
-  r.next = jc_return_step(dp, g, slope, curv);
-  r.step = r.next - dp;
-  const V rel_h = lane_abs(r.step) * inv_ep;
-  r.rate_side = rate_on ? x_above == (r.next * inv_ref > 1.0) : !LaneMask<V>{};
-  const V rel_r = rate_m ? lane_abs(r.step) * inv_dp : V{};
-  const V trunc = jc_taylor_truncation(jc, rel_h, rel_r);
-  jc_taylor_terms(jc, r.step, hard, d_hard, dd_hard, inv_ep, rate, d_rate, dd_rate, inv_dp,
-                  r.hard_n, r.rate_n);
-  r.hard_rate_n = r.hard_n * r.rate_n;
-  const V g_n = q_trial - three_g * r.next - scale * r.hard_rate_n;
-  r.taylor = r.next > r.lo && r.next < r.hi && r.next != dp && r.rate_side && trunc <= 1e-14 &&
-             lane_abs(g_n) + scale * r.hard_rate_n * trunc <= tol_g;
-  return r;
-}
-
 // Advances the points of `st` whose step the fast path covers and returns
 // them (true lanes); `evaluations` is the number of return evaluations of
 // each of them (0 elastic, 1 or 2 plastic). In the other lanes st holds no
