@@ -1,19 +1,16 @@
-// The lane vectors of update_points stay inside its target_clones loop
-// (everything they pass through is forced inline), so GCC's note that passing
-// them by value changes the ABI between instruction sets does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
 #include "solver/material/point_update.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
+#include "solver/common/isa.hpp"
 #include "solver/material/damage.hpp"
 #include "solver/material/elasticity.hpp"
 #include "solver/material/eos.hpp"
 #include "solver/material/johnson_cook.hpp"
 #include "solver/material/point_update_fast.hpp"
+#include "solver/material/update_points_isa.hpp"
 
 namespace splat {
 
@@ -145,10 +142,6 @@ void update_damage(const Material& m, const ModelSwitches& sw, PointState& st, d
 
 namespace {
 
-bool is_symmetric(const Mat3& a) {
-  return a(0, 1) == a(1, 0) && a(0, 2) == a(2, 0) && a(1, 2) == a(2, 1);
-}
-
 PointFields<double> point_fields(const PointState& st) {
   PointFields<double> f;
   for (int k = 0; k < 6; ++k) f.s[k] = st.s(sym_row[k], sym_col[k]);
@@ -270,76 +263,23 @@ PointUpdateResult update_point_general(const Material& m, const MaterialConstant
   return result;
 }
 
-namespace {
-
-constexpr int points_per_lane_group = 8;
-using PointLane = Lane<points_per_lane_group>;
-
-template <class F>
-SPLAT_LANE_INLINE PointLane point_lanes(F&& f) {
-  return PointLane{f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)};
-}
-
-}  // namespace
-
-// Groups of 8 points in lanes (point_update_fast); a group's points that the
-// fast path does not cover, and the points past the last whole group, go
-// through update_point one by one.
-__attribute__((target_clones("avx512f", "avx2", "default"))) void update_points(
-    const Material& m, const MaterialConstants& mc, const ModelSwitches& sw, PointState* states,
-    const int* index, std::size_t n, const Mat3* d_eps, const double* J_new, double dt,
-    const double* length, PointUpdateResult* out) {
-  constexpr int W = points_per_lane_group;
-  std::size_t k0 = 0;
-  for (; k0 + W <= n; k0 += W) {
-    PointState* st[W];
-    for (int l = 0; l < W; ++l) st[l] = &states[index[k0 + std::size_t(l)]];
-    bool symmetric = true;
-    for (int l = 0; l < W; ++l)
-      symmetric = symmetric && is_symmetric(st[l]->s) && is_symmetric(d_eps[k0 + std::size_t(l)]);
-    LaneMask<PointLane> done{};
-    PointLane evaluations{};
-    if (symmetric) {
-      PointFields<PointLane> f;
-      PointLane de[6];
-      for (int k = 0; k < 6; ++k) {
-        f.s[k] =
-            point_lanes([&](int l) SPLAT_LANE_LAMBDA { return st[l]->s(sym_row[k], sym_col[k]); });
-        de[k] = point_lanes([&](int l) SPLAT_LANE_LAMBDA {
-          return d_eps[k0 + std::size_t(l)](sym_row[k], sym_col[k]);
-        });
-      }
-      for_each_point_field(f, [&](PointLane& v, double PointState::*field) SPLAT_LANE_LAMBDA {
-        v = point_lanes([&](int l) SPLAT_LANE_LAMBDA { return st[l]->*field; });
-      });
-      PointLane J;
-      std::memcpy(&J, J_new + k0, sizeof J);
-      done = point_update_fast(m, mc, sw, f, de, J, dt, evaluations);
-      for (int l = 0; l < W; ++l) {
-        if (!done[l]) continue;
-        PointState& p = *st[l];
-        for (int k = 0; k < 6; ++k) {
-          p.s(sym_row[k], sym_col[k]) = f.s[k][l];
-          p.s(sym_col[k], sym_row[k]) = f.s[k][l];
-        }
-        for_each_point_field(
-            f, [&](PointLane& v, double PointState::*field) SPLAT_LANE_LAMBDA { p.*field = v[l]; });
-        out[k0 + std::size_t(l)] = {static_cast<int>(evaluations[l]), true};
-      }
+// Groups of 8 points in lanes, compiled once per instruction set
+// (update_points_isa.cpp), the set chosen at run time.
+void update_points(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
+                   PointState* states, const int* index, std::size_t n, const Mat3* d_eps,
+                   const double* J_new, double dt, const double* length, PointUpdateResult* out) {
+  auto* const run = [] {
+    switch (active_isa()) {
+      case Isa::x86_64_v4:
+        return &isa_v4::update_points;
+      case Isa::x86_64_v3:
+        return &isa_v3::update_points;
+      case Isa::baseline:
+        break;
     }
-    // The lanes have tested these points already (none, if a group's inputs
-    // were not symmetric).
-    for (int l = 0; l < W; ++l) {
-      const std::size_t k = k0 + std::size_t(l);
-      if (done[l]) continue;
-      out[k] = symmetric
-                   ? update_point_general(m, mc, sw, *st[l], d_eps[k], J_new[k], dt, length[k])
-                   : update_point(m, mc, sw, *st[l], d_eps[k], J_new[k], dt, length[k]);
-    }
-  }
-  for (std::size_t k = k0; k < n; ++k) {
-    out[k] = update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k]);
-  }
+    return &isa_baseline::update_points;
+  }();
+  run(m, mc, sw, states, index, n, d_eps, J_new, dt, length, out);
 }
 
 }  // namespace splat

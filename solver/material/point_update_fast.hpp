@@ -38,6 +38,11 @@ struct PointFields {
       sigma_y_peak, plastic_work, sigma_y_static_peak;
 };
 
+// Whether a 3x3 matrix is exactly symmetric (the fast path's inputs must be).
+SPLAT_LANE_INLINE bool is_symmetric(const Mat3& a) {
+  return a(0, 1) == a(1, 0) && a(0, 2) == a(2, 0) && a(1, 2) == a(2, 1);
+}
+
 // Row and column of component k of the symmetric 6-vectors above.
 inline constexpr int sym_row[6] = {0, 1, 2, 0, 1, 0};
 inline constexpr int sym_col[6] = {0, 1, 2, 1, 2, 2};

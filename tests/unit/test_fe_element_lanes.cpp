@@ -14,6 +14,7 @@
 #include "solver/fe/hex8.hpp"
 #include "solver/fe/quad4_axisym.hpp"
 #include "solver/mesh/generators.hpp"
+#include "support/isa.hpp"
 #include "support/materials.hpp"
 
 namespace splat {
@@ -201,7 +202,7 @@ TEST(fe_element_lanes, quad_results_do_not_depend_on_the_pairing) {
 // one-element path (body 1): forces, states, held hourglass forces and every
 // reduction the same to the bit.
 template <class Mesh>
-void check_lanes_against_one_by_one(const Mesh& mesh, const FeSettings& settings) {
+void check_active_lanes_against_one_by_one(const Mesh& mesh, const FeSettings& settings) {
   std::array<NodeSet, 2> nodes;
   std::array<FeBody, 2> body;
   std::array<std::vector<FeStepResult>, 2> results;
@@ -256,6 +257,12 @@ void check_lanes_against_one_by_one(const Mesh& mesh, const FeSettings& settings
     EXPECT_GT(a.viscosity_power, 0.0);
     EXPECT_TRUE(a.inverted > 0 || !a.to_erode.empty());  // the inverted path ran
   }
+}
+
+// The above for the lane loops of every instruction set this CPU supports.
+template <class Mesh>
+void check_lanes_against_one_by_one(const Mesh& mesh, const FeSettings& settings) {
+  test_support::for_each_isa([&] { check_active_lanes_against_one_by_one(mesh, settings); });
 }
 
 FeSettings stiffness_form() {

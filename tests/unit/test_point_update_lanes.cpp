@@ -15,6 +15,7 @@
 
 #include "solver/material/point_update.hpp"
 #include "solver/material/point_update_fast.hpp"
+#include "tests/support/isa.hpp"
 #include "tests/support/materials.hpp"
 
 namespace splat {
@@ -78,8 +79,8 @@ bool same_bits(const PointState& a, const PointState& b) {
 
 // n points, each with its own loading history (rates from elastic to far
 // past yield, some reversed), advanced `steps` steps both ways.
-void expect_lanes_match_points(const Material& m, const ModelSwitches& sw, int steps,
-                               unsigned seed) {
+void expect_active_lanes_match_points(const Material& m, const ModelSwitches& sw, int steps,
+                                      unsigned seed) {
   const MaterialConstants mc = derive_constants(m);
   constexpr int n = 61;  // 7 whole groups of 8 and a remainder of 5
   std::mt19937_64 rng(seed);
@@ -113,6 +114,12 @@ void expect_lanes_match_points(const Material& m, const ModelSwitches& sw, int s
       ASSERT_EQ(out[k].converged, r.converged);
     }
   }
+}
+
+// The above for the lane loops of every instruction set this CPU supports.
+void expect_lanes_match_points(const Material& m, const ModelSwitches& sw, int steps,
+                               unsigned seed) {
+  test_support::for_each_isa([&] { expect_active_lanes_match_points(m, sw, steps, seed); });
 }
 
 TEST(point_update_lanes, match_update_point_linear_eos) {
