@@ -147,6 +147,16 @@ SPLAT_LANE_INLINE void group_states(FeBody& body, const Scratch& s, int g, Point
   for (int l = 0; l < W; ++l) st[l] = &body.state[std::size_t(s.lane_element(g, l))];
 }
 
+// Asks for the states of the W elements after group g's last one (the next
+// group's, in a block without eroded elements) while g computes.
+template <int W, class Scratch>
+SPLAT_LANE_INLINE void prefetch_next_states(const FeBody& body, const Scratch& s, int g) {
+  const std::size_t next = std::size_t(s.lane_element(g, W - 1)) + 1;
+  if (next + W > body.state.size()) return;
+  const char* p = reinterpret_cast<const char*>(&body.state[next]);
+  for (std::size_t b = 0; b < W * sizeof(PointState); b += 64) __builtin_prefetch(p + b);
+}
+
 // One field, or one stress entry, of those states. Plain loops, not lanes_of:
 // in the large block loops GCC left the lambda of a pointer-to-member load out
 // of line, compiled for the baseline instruction set and called lane by lane.
@@ -255,6 +265,7 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
                                0.5 * (L[1][0] - L[0][1]), dt, Q);
   PointState* st[W];
   group_states<W>(body, s, g, st);
+  prefetch_next_states<W>(body, s, g);
   V S[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -381,11 +392,16 @@ SPLAT_LANE_INLINE void stress_lanes(FeBody& body, int g, const Lane<W>& volume, 
 template <class Scratch>
 SPLAT_LANE_INLINE void finish_block(FeBody& body, const Scratch& s, BlockSums& sums,
                                     std::vector<int>& erode) {
+  // A local copy stays in registers: through the reference every element's
+  // sums were a load and a store on the additions' dependency chains (the
+  // same additions in the same order).
+  BlockSums local = sums;
   for (int p = 0; p < s.count; ++p) {
     if (!s.valid[p]) continue;
     const std::size_t e = std::size_t(s.element[p]);
-    finish_element(body, e, body.volume[e], s.dt_e[p], s.q_power[p], s.hg_power[p], sums, erode);
+    finish_element(body, e, body.volume[e], s.dt_e[p], s.q_power[p], s.hg_power[p], local, erode);
   }
+  sums = local;
 }
 
 // One block of hexahedra in phases: (a) geometry, L and rotation in lanes of
