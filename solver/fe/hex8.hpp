@@ -340,7 +340,8 @@ inline double cbrt_positive_estimate(double x) {
   return std::bit_cast<double>(std::bit_cast<std::uint64_t>(x) / 3 + 0x2A9F7893782DA1CEull);
 }
 template <class T>
-SPLAT_LANE_INLINE T cbrt_positive_refine(const T& x, T y) {
+SPLAT_LANE_INLINE T cbrt_positive_refine(const T& x, const T& estimate) {
+  T y = estimate;
   for (int i = 0; i < 2; ++i) {
     const T y3 = y * y * y;
     y *= (y3 + 2.0 * x) / (2.0 * y3 + x);
