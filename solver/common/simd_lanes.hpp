@@ -3,23 +3,25 @@
 // type T, double for one element and Lane<W> for W at once, lane by lane the
 // same IEEE operations (the build has -ffp-contract=off, so no lane fuses a
 // multiply-add the scalar code does not), hence the same results to the bit.
-// The loops that use them (fe_body.cpp) are compiled with target_clones, so
-// the vectors map onto SSE2, AVX2 or AVX-512 registers chosen at run time;
-// nothing here names an instruction set.
+// The loops that use them (solver/fe/fe_block_lanes.hpp,
+// solver/material/update_points_isa.cpp) are compiled once per instruction
+// set and chosen at run time (solver/common/isa.hpp), so the vectors map onto
+// SSE2, AVX2 or AVX-512 registers; nothing here names an instruction set.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
 
-// Kernels that run on lanes are forced inline, so that inside a
-// target_clones loop they are compiled for that loop's instruction set
-// (a call would run the baseline version).
+// Kernels that run on lanes are forced inline into those loops: a call would
+// pass the vectors through memory, and an out-of-line copy of a template
+// could be linked in from another instruction set's object (the test
+// build.isa_objects_self_contained).
 #define SPLAT_LANE_INLINE [[gnu::always_inline]] inline
 // The same for a lambda that takes or returns lane vectors, written after its
 // parameter list: GCC does not always inline a lambda passed down through
-// for_each_point_field, and an out-of-line lambda is compiled for the baseline
-// instruction set (it is no part of the target_clones loop).
+// for_each_point_field (the test build.lane_kernels_inlined finds any such
+// function left out of line).
 #define SPLAT_LANE_LAMBDA __attribute__((always_inline))
 
 namespace splat {
