@@ -223,7 +223,6 @@ namespace {
 
 using fe_block::finish_element;
 using fe_block::inverted_element;
-using fe_block::to_be_eroded;
 using fe_block::zero_forces;
 
 inline void finish_element(FeBody& body, std::size_t e, double V, const MaterialStep& ms,
