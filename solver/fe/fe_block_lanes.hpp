@@ -501,12 +501,16 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
         // R Q^k in the order Eigen's 3x3 product sums it (hex8_hourglass_stiffness):
         // rows 0 and 1 in one SSE2 packet, left to right; row 2 as an unrolled
         // reduction, r_0 + (r_1 + r_2).
+        V rotated[3];
         for (int i = 0; i < 2; ++i)
-          Q[k][i] = ((R[i][0] * Qk[0] + R[i][1] * Qk[1]) + R[i][2] * Qk[2]) +
-                    (coefficient * dt) * qdot[k][i];
-        Q[k][2] = (R[2][0] * Qk[0] + (R[2][1] * Qk[1] + R[2][2] * Qk[2])) +
-                  (coefficient * dt) * qdot[k][2];
-        power += (Q[k][0] * qdot[k][0] + Q[k][1] * qdot[k][1]) + Q[k][2] * qdot[k][2];
+          rotated[i] = (R[i][0] * Qk[0] + R[i][1] * Qk[1]) + R[i][2] * Qk[2];
+        rotated[2] = R[2][0] * Qk[0] + (R[2][1] * Qk[1] + R[2][2] * Qk[2]);
+        V mid[3];
+        for (int i = 0; i < 3; ++i) {
+          Q[k][i] = rotated[i] + (coefficient * dt) * qdot[k][i];
+          mid[i] = 0.5 * (rotated[i] + Q[k][i]);
+        }
+        power += (mid[0] * qdot[k][0] + mid[1] * qdot[k][1]) + mid[2] * qdot[k][2];
       }
       for (int l = 0; l < W; ++l) {
         if (!s.real(g, l)) continue;

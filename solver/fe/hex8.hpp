@@ -381,14 +381,19 @@ inline double hex8_hourglass_viscous(const std::array<Vec3, 4>& qdot, double a_h
   return power;
 }
 
-// Stiffness form: Q^k <- R Q^k + kappa dt qdot^k; returns sum Q^k . qdot^k
-// (either sign: stored elastic energy comes back), W.
+// Stiffness form: Q^k <- R Q^k + kappa dt qdot^k; returns the mid-point power
+// sum (R Q^k_old + Q^k_new) / 2 . qdot^k (either sign: stored elastic energy
+// comes back), W. The mid-point makes the booked work over a step equal the
+// change of the stored energy |Q|^2 / (2 kappa) exactly; Q_new . qdot alone
+// books an extra kappa dt |qdot|^2 every step, a drift of order dt.
 inline double hex8_hourglass_stiffness(const std::array<Vec3, 4>& qdot, double kappa, double dt,
                                        const Mat3& R, std::array<Vec3, 4>& Q) {
   double power = 0.0;
   for (int k = 0; k < 4; ++k) {
-    Q[k] = R * Q[k] + (kappa * dt) * qdot[k];
-    power += Q[k].dot(qdot[k]);
+    const Vec3 rotated = R * Q[k];
+    Q[k] = rotated + (kappa * dt) * qdot[k];
+    const Vec3 mid = 0.5 * (rotated + Q[k]);
+    power += mid.dot(qdot[k]);
   }
   return power;
 }

@@ -186,8 +186,9 @@ SPLAT_LANE_INLINE T quad4_axisym_hourglass_viscous_cm(const std::array<T, 4>& ga
 }
 
 // Rotates Q (N per radian) by the in-plane rotation R (the (r, z) block of a
-// 3x3 rotation), adds kappa dt qdot, adds f_a = -gamma_a Q; returns Q . qdot,
-// W per radian.
+// 3x3 rotation), adds kappa dt qdot, adds f_a = -gamma_a Q; returns the
+// mid-point power (R Q_old + Q_new) / 2 . qdot, W per radian (as
+// hex8_hourglass_stiffness).
 template <class T>
 SPLAT_LANE_INLINE T quad4_axisym_hourglass_stiffness_cm(const std::array<T, 4>& gamma,
                                                         const Quad4FieldT<T>& v, const T& kappa,
@@ -196,13 +197,13 @@ SPLAT_LANE_INLINE T quad4_axisym_hourglass_stiffness_cm(const std::array<T, 4>& 
                                                         Quad4FieldT<T>& f) {
   T qdot[2];
   quad4_axisym_hourglass_rate_cm(gamma, v, qdot);
-  const T Q0 = (R00 * Q[0] + R01 * Q[1]) + (kappa * dt) * qdot[0];
-  const T Q1 = (R10 * Q[0] + R11 * Q[1]) + (kappa * dt) * qdot[1];
-  Q[0] = Q0;
-  Q[1] = Q1;
+  const T rotated0 = R00 * Q[0] + R01 * Q[1];
+  const T rotated1 = R10 * Q[0] + R11 * Q[1];
+  Q[0] = rotated0 + (kappa * dt) * qdot[0];
+  Q[1] = rotated1 + (kappa * dt) * qdot[1];
   for (int i = 0; i < 2; ++i)
     for (int a = 0; a < 4; ++a) f.u[i][a] -= gamma[a] * Q[i];
-  return Q[0] * qdot[0] + Q[1] * qdot[1];
+  return 0.5 * ((rotated0 + Q[0]) * qdot[0] + (rotated1 + Q[1]) * qdot[1]);
 }
 inline double quad4_axisym_hourglass_stiffness_cm(const std::array<double, 4>& gamma,
                                                   const Quad4Field& v, double kappa, double dt,
