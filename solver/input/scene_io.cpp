@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <exception>
+#include <numbers>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -831,6 +832,37 @@ ImpactSpec impact_spec(const json& block) {
   return impact;
 }
 
+// An expanded scene holds the impact velocity twice: in the particle body's
+// initial velocity (what the run flies) and in the particle_impact block
+// (what the verdict and the coefficient of restitution read). Copies that
+// disagree (an override of one of them) are refused, naming both.
+void check_impact_velocity(const Scene& scene, const ImpactSpec& impact) {
+  const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(),
+                                 [&](const BodySpec& b) { return b.name == impact.particle; });
+  if (body == scene.bodies.end()) return;
+  const Vec3& v = body->velocity;
+  const double speed = v.norm();
+  const double angle =
+      speed > 0.0 ? std::atan2(std::hypot(v.x(), v.y()), -v.z()) * 180.0 / std::numbers::pi : 0.0;
+  const double tolerance = 1e-9 * std::max(speed, impact.velocity);
+  Problems problems;
+  const std::string where =
+      "/bodies/" + std::to_string(body - scene.bodies.begin()) + "/initial/velocity";
+  if (std::abs(speed - impact.velocity) > tolerance) {
+    problems.add("/particle_impact/velocity",
+                 "is " + std::to_string(impact.velocity) + " m/s but the particle body flies at " +
+                     std::to_string(speed) + " m/s (" + where +
+                     "): an expanded scene holds the velocity in both; set both, or set it in "
+                     "a particle_impact scene and expand again");
+  } else if (speed > 0.0 && std::abs(angle - impact.angle) > 1e-6) {
+    problems.add("/particle_impact/angle", "is " + std::to_string(impact.angle) +
+                                               " deg but the particle body flies at " +
+                                               std::to_string(angle) + " deg from the normal (" +
+                                               where + "): set both, or expand again");
+  }
+  if (!problems.list.empty()) throw InputError(std::move(problems.list));
+}
+
 }  // namespace
 
 LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
@@ -915,6 +947,7 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
   // again): bodies plus the block with the model the expansion chose.
   if (const auto pi = doc.find("particle_impact"); pi != doc.end() && pi->contains("model")) {
     scene.impact = impact_spec(*pi);
+    check_impact_velocity(scene, *scene.impact);
     loaded.resolved["particle_impact"] = *pi;
   }
   return loaded;

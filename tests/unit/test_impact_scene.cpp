@@ -147,3 +147,28 @@ TEST(ImpactScene, bad_blocks_name_the_field) {
 
 }  // namespace
 }  // namespace splat
+
+namespace splat {
+namespace {
+
+// Issue 22, item 9: an expanded scene (a stored campaign job) holds the
+// impact velocity in the particle body and in the particle_impact block. A
+// run with only one of them changed flew at the body's velocity and judged
+// the verdict against the block's: such a scene is refused, naming the field.
+TEST(ImpactScene, expanded_scene_with_disagreeing_velocities_is_refused) {
+  nlohmann::json expanded = read_scene(impact(al_on_al(550.0))).resolved;
+  EXPECT_EQ(first_error(expanded), "");
+  nlohmann::json changed = expanded;
+  changed["particle_impact"]["velocity"] = 5.0;
+  const std::string error = first_error(changed);
+  EXPECT_EQ(error.rfind("/particle_impact/velocity", 0), 0u) << error;
+  EXPECT_NE(error.find("550"), std::string::npos) << error;
+  // Both changed together is a consistent scene.
+  for (auto& body : changed["bodies"]) {
+    if (body["name"] == "particle") body["initial"]["velocity"] = {0.0, 0.0, -5.0};
+  }
+  EXPECT_EQ(first_error(changed), "");
+}
+
+}  // namespace
+}  // namespace splat
