@@ -655,13 +655,15 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       }
     }
     stats_.links_active = 0;
-    double area = 0.0;
+    double area = 0.0, remaining = 0.0;
     for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
       if (link_state_[k] != LinkState::active) continue;
       ++stats_.links_active;
       area += link_area_[k];
+      remaining += std::max(work_budget(*settings_.adhesion, link_area_[k]) - link_work_[k], 0.0);
     }
     stats_.bonded_area = area * scale();
+    stats_.bond_energy = remaining * scale();
     stats_.max_bonded_area = std::max(stats_.max_bonded_area, stats_.bonded_area);
     stats_.max_links_active = std::max(stats_.max_links_active, stats_.links_active);
   }

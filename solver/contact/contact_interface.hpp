@@ -92,6 +92,9 @@ struct ContactStats {
   long long max_links_active = 0;  // most active links at one time
   double bonded_area = 0.0;        // m^2, area of the active links now
   double max_bonded_area = 0.0;    // m^2
+  // Budget the active links have left, sum of G_c A - W over them (J): the
+  // energy the bond can still take out of a separating particle.
+  double bond_energy = 0.0;
   long long links_in_tension = 0;  // links that carried tension in the last step
   // Largest node displacement of the position-only push-out in one step, m.
   double max_position_correction = 0.0;
@@ -139,6 +142,11 @@ class ContactInterface {
   const std::string& slave_body() const { return slave_body_; }
   const ContactSurface& master_surface() const { return master_; }
   const ContactSurface& slave_surface() const { return slave_; }
+  // False for a master face whose element was eroded (followed in
+  // axisymmetric runs only; other faces always read live).
+  bool master_face_live(std::size_t f) const {
+    return f >= master_face_dead_.size() || master_face_dead_[f] == 0;
+  }
   // Per slave node (index into slave_surface().nodes): link state, work done
   // against separation (J; per radian in 2D) and adhesive area (m^2; per
   // radian in 2D), set when the link activates.

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "solver/common/parallel.hpp"
+#include "solver/core/physics_guard.hpp"
 
 namespace splat {
 namespace {
@@ -15,9 +16,6 @@ namespace {
 constexpr double k_hold_transits = 8.0;     // hold time in particle transits R / c_p, -
 constexpr double k_wall_touch = 1e-9;       // gap / R below which a node touches a rigid wall, -
 constexpr double k_thesis_fraction = 0.01;  // thesis: > 1 % of the most links ever active
-// |v_n| / v_impact above which a particle still moving into the substrate at
-// the maximum time has no verdict, -.
-constexpr double k_undecided_speed = 0.05;
 
 std::string format_reason(const char* fmt, double a, double b) {
   char buf[240];
@@ -59,6 +57,7 @@ struct BodyMotion {
   double mass = 0.0;  // kg, per radian in 2D
   Vec3 velocity = Vec3::Zero();
   double kinetic = 0.0;  // J, per radian in 2D
+  double height = 0.0;   // m, of the centre of mass along the substrate normal
 };
 
 BodyMotion motion(const Model& model, int b) {
@@ -68,7 +67,7 @@ BodyMotion motion(const Model& model, int b) {
   const NodeSet& n = model.nodes;
   // (mass, momentum, kinetic energy) over fixed blocks: the same bits for
   // any thread count.
-  using Sums = Eigen::Matrix<double, 5, 1>;
+  using Sums = Eigen::Matrix<double, 6, 1>;
   constexpr std::size_t block = 1024, min_parallel = 4096;
   const Sums sums = block_sum(body.end - body.begin, block, min_parallel, Sums(Sums::Zero()),
                               [&](std::size_t lo, std::size_t hi) {
@@ -80,11 +79,13 @@ BodyMotion motion(const Model& model, int b) {
                                   sum(0) += m;
                                   sum.segment<3>(1) += m * n.v[i];
                                   sum(4) += 0.5 * m * n.v[i].squaredNorm();
+                                  sum(5) += m * height(model, n.x[i]);
                                 }
                                 return sum;
                               });
   out.mass = sums(0);
   out.kinetic = sums(4);
+  out.height = out.mass > 0.0 ? sums(5) / out.mass : 0.0;
   out.velocity = centroid_velocity(model, Vec3(sums.segment<3>(1)), out.mass);
   return out;
 }
@@ -95,8 +96,9 @@ double finite_or_zero(double x) {
 
 }  // namespace
 
-ImpactRun::ImpactRun(const ImpactSpec& spec, const Model& model, double max_time)
-    : spec_(spec), monitor_(VerdictSettings{}), max_time_(max_time) {
+ImpactRun::ImpactRun(const ImpactSpec& spec, const Model& model, double max_time,
+                     double energy_limit)
+    : spec_(spec), monitor_(VerdictSettings{}), max_time_(max_time), energy_limit_(energy_limit) {
   particle_ = body_index(model, spec.particle);
   substrate_ = spec.substrate.empty() ? -1 : body_index(model, spec.substrate);
   for (std::size_t c = 0; c < model.contacts.size(); ++c) {
@@ -120,8 +122,8 @@ ImpactRun::ImpactRun(const ImpactSpec& spec, const Model& model, double max_time
     const Material& material =
         ref.sph ? model.sph_bodies[ref.index].material : model.bodies[ref.index].material;
     settings_.hold_time = k_hold_transits * radius_ / p_wave_speed(material);
+    settings_.radius = radius_;
   }
-  settings_.impact_speed = spec.velocity;
   monitor_ = ImpactMonitor(settings_);
 }
 
@@ -133,12 +135,17 @@ ImpactSample ImpactRun::sample(double time, const Model& model) const {
   const BodyMotion sub = motion(model, substrate_);
   const Vec3 rel = p.velocity - sub.velocity;
   s.v_normal = rel.z();
+  s.v_tangential = std::hypot(rel.x(), rel.y());
   s.kinetic_rel = 0.5 * p.mass * scale * rel.squaredNorm();
+  const double leaving = std::max(s.v_normal, 0.0);
+  s.kinetic_leaving = 0.5 * p.mass * scale * (leaving * leaving + s.v_tangential * s.v_tangential);
   if (contact_ >= 0) {
     const ContactStats& st = model.contacts[contact_].stats();
     s.links_active = links_hold_ ? st.links_active : 0;
     s.pairs_in_contact = st.in_contact;
     s.bonded_area = links_hold_ ? st.bonded_area : 0.0;
+    s.bond_energy = links_hold_ ? st.bond_energy : 0.0;
+    if (s.links_active > 0) s.bond_offset = p.height - bonded_height(model);
   } else if (particle_ >= 0) {
     const NodeRange body = nodes_of(model, particle_);
     for (std::size_t i = body.begin; i < body.end; ++i) {
@@ -148,6 +155,20 @@ ImpactSample ImpactRun::sample(double time, const Model& model) const {
     }
   }
   return s;
+}
+
+double ImpactRun::bonded_height(const Model& model) const {
+  const ContactInterface& c = model.contacts[contact_];
+  const std::vector<LinkState>& states = c.link_states();
+  const std::vector<int>& ids = c.slave_surface().nodes;
+  double sum = 0.0;
+  long long count = 0;
+  for (std::size_t k = 0; k < states.size() && k < ids.size(); ++k) {
+    if (states[k] != LinkState::active) continue;
+    sum += height(model, model.nodes.x[ids[k]]);
+    ++count;
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
 std::optional<VerdictDecision> ImpactRun::observe(double time, const Model& model) {
@@ -251,6 +272,12 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
   }
 
   bool own_end = settled.has_value() || s.stop_reason == "end-time";
+  std::string guard_reason;
+  const std::string failed =
+      check_physics(model, s.energy, GuardInput{particle_, substrate_, contact_, energy_limit_},
+                    r.guard, guard_reason);
+  r.bond_energy = now.bond_energy;
+  r.separating_kinetic = now.kinetic_leaving;
   // Above the scene's max_eroded_fraction the remaining body no longer
   // represents the particle: the verdict is withheld (outcome unstable).
   if (own_end && eroded_fraction > spec_.max_eroded_fraction) {
@@ -262,14 +289,11 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
         "%.0f %%): the particle broke up (elements at the damage cap) or its mesh could not "
         "follow the deformation",
         100.0 * eroded_fraction, 100.0 * spec_.max_eroded_fraction);
-  } else if (own_end && !settled && now.v_normal < -k_undecided_speed * spec_.velocity) {
+  } else if (own_end && !failed.empty()) {
     own_end = false;
     s.outcome = RunOutcome::unstable;
-    s.stop_reason = "undecided";
-    s.reason = format_reason(
-        "no verdict at the end time %.4g s: the particle still moves into the substrate at "
-        "%.4g m/s",
-        s.end_time, -now.v_normal);
+    s.stop_reason = failed;
+    s.reason = "no verdict: " + guard_reason;
   } else if (!own_end && s.stop_reason == "energy-balance") {
     // Say which term broke the balance (all as fractions of the initial energy).
     const EnergyBudget& e = s.energy;
@@ -279,12 +303,19 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
     s.reason +=
         format_reason("; hourglass %.3g, kinetic now %.3g)", e.hourglass / E0, e.kinetic / E0);
   }
-  if (own_end) {
-    const VerdictDecision d = settled ? *settled : monitor_.at_end(now);
-    r.verdict = d.verdict == ImpactVerdict::stick ? "stick" : "rebound";
-    r.settled = d.settled;
-    s.outcome = d.verdict == ImpactVerdict::stick ? RunOutcome::stick : RunOutcome::rebound;
-    s.reason = d.reason;
+  const std::optional<VerdictDecision> decision =
+      own_end ? std::optional(settled ? *settled : monitor_.at_end(now)) : std::nullopt;
+  if (decision && decision->verdict == ImpactVerdict::undecided) {
+    s.outcome = RunOutcome::unstable;
+    s.stop_reason = "undecided";
+    s.reason = "no verdict: " + decision->reason;
+    r.verdict = "none";
+  } else if (decision) {
+    const bool stick = decision->verdict == ImpactVerdict::stick;
+    r.verdict = to_string(decision->verdict);
+    r.settled = decision->settled;
+    s.outcome = stick ? RunOutcome::stick : RunOutcome::rebound;
+    s.reason = decision->reason;
     if (!spec_.adaptive_end) {
       s.stop_reason = "end-time";
     } else {
@@ -298,7 +329,10 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
   for (double* x :
        {&r.rebound_velocity, &r.coefficient_of_restitution, &r.bonded_area, &r.contact_area,
         &r.bonded_fraction, &r.initial_kinetic, &r.final_particle_kinetic, &r.adhesion_dissipated,
-        &r.max_temperature, &r.max_plastic_strain, &r.flattening_ratio, &r.penetration_depth}) {
+        &r.max_temperature, &r.max_plastic_strain, &r.flattening_ratio, &r.penetration_depth,
+        &r.bond_energy, &r.separating_kinetic, &r.guard.max_interpenetration,
+        &r.guard.interpenetration_ratio, &r.guard.eroded_energy_fraction,
+        &r.guard.internal_energy_fraction}) {
     *x = finite_or_zero(*x);
   }
   s.impact = r;

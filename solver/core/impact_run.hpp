@@ -46,29 +46,37 @@ namespace splat {
 
 class ImpactRun {
  public:
-  // `model` is the built model of the expanded scene; `max_time` its end time.
-  ImpactRun(const ImpactSpec& spec, const Model& model, double max_time);
+  // `model` is the built model of the expanded scene; `max_time` its end
+  // time; `energy_limit` its energy_balance_limit (the physics guard's
+  // tolerance on the energy terms).
+  ImpactRun(const ImpactSpec& spec, const Model& model, double max_time, double energy_limit);
 
   // Feeds the state after a step; returns the settled decision once there is
   // one (an adaptive run stops on it, a fixed one keeps going).
   std::optional<VerdictDecision> observe(double time, const Model& model);
 
   // Fills s.impact from the final state. A run that ended on its own terms
-  // (stop_reason end-time, or a settled verdict passed in `settled`) gets the
-  // verdict as its outcome (stick / rebound) with its reason and stop_reason
-  // (verdict-settled, max-time or end-time); any other ending (unstable,
-  // timed-out, cancelled, error) keeps its outcome and reason.
+  // (stop_reason end-time, or a settled verdict passed in `settled`) and
+  // passes the physics guard (physics_guard.hpp) gets the verdict as its
+  // outcome (stick / rebound) with its reason and stop_reason
+  // (verdict-settled, max-time or end-time); one that fails the guard, or
+  // whose verdict at the maximum time is undecided, ends unstable with the
+  // check's name as stop_reason; any other ending (unstable, timed-out,
+  // cancelled, error) keeps its outcome and reason.
   void finish(RunSummary& s, const Model& model, const std::optional<VerdictDecision>& settled);
 
   double hold_time() const { return settings_.hold_time; }
 
  private:
   ImpactSample sample(double time, const Model& model) const;
+  // Mean height of the particle nodes with active links, m.
+  double bonded_height(const Model& model) const;
 
   ImpactSpec spec_;
   VerdictSettings settings_;
   ImpactMonitor monitor_;
   double max_time_ = 0.0;
+  double energy_limit_ = 0.0;
   int particle_ = -1;        // scene body index (model.body_refs), FE or SPH
   int substrate_ = -1;       // scene body index, -1: rigid wall
   int contact_ = -1;         // contact interface index, -1: rigid wall

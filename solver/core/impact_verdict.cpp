@@ -7,18 +7,41 @@ namespace splat {
 namespace {
 
 constexpr double k_area_steadiness = 0.01;  // relative bonded-area change allowed, -
-// v_n / v_impact above which a particle counts as leaving even with links
-// active (a link with a tiny sigma_c stays active over an opening of
-// G_c / sigma_c while the particle flies off), -
-constexpr double k_held_speed = 0.02;
 
-std::string format(const char* fmt, double a, double b) {
-  char buf[200];
-  std::snprintf(buf, sizeof buf, fmt, a, b);
+std::string format(const char* fmt, double a, double b, double c = 0.0) {
+  char buf[240];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c);
   return buf;
 }
 
 }  // namespace
+
+const char* to_string(ImpactVerdict v) {
+  switch (v) {
+    case ImpactVerdict::stick:
+      return "stick";
+    case ImpactVerdict::rebound:
+      return "rebound";
+    case ImpactVerdict::undecided:
+      return "undecided";
+  }
+  return "undecided";
+}
+
+bool ImpactMonitor::tearing(const ImpactSample& s) {
+  if (s.links_active == 0) {
+    linked_ = false;
+    return false;
+  }
+  if (!linked_ || s.bond_offset < min_offset_) min_offset_ = s.bond_offset;
+  linked_ = true;
+  return s.bond_offset - min_offset_ > k_tear_fraction * settings_.radius;
+}
+
+bool ImpactMonitor::held(const ImpactSample& s) {
+  const bool torn = tearing(s);
+  return s.links_active > 0 && s.kinetic_leaving <= s.bond_energy && !torn;
+}
 
 std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
   if (kinetic_0_ < 0.0) kinetic_0_ = s.kinetic_rel;
@@ -37,7 +60,7 @@ std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
                rebound_since_, s.v_normal)};
   }
 
-  const bool holding = s.links_active > 0 && s.v_normal <= k_held_speed * settings_.impact_speed;
+  const bool holding = held(s);
   const bool steady = holding && s.links_active >= stick_links_ &&
                       std::abs(s.bonded_area - stick_area_) <= k_area_steadiness * stick_area_;
   if (!holding || !steady || stick_since_ < 0.0) {
@@ -49,25 +72,52 @@ std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
   if (holding && stick_since_ >= 0.0 && calm && s.time - stick_since_ >= settings_.hold_time) {
     return VerdictDecision{
         ImpactVerdict::stick, true,
-        format("stick: active links steady since t = %.4g s and the relative kinetic energy "
-               "down to %.3g of its initial value",
-               stick_since_, kinetic_0_ > 0.0 ? s.kinetic_rel / kinetic_0_ : 0.0)};
+        format("stick: active links steady since t = %.4g s, the relative kinetic energy down "
+               "to %.3g of its initial value and the bond's remaining energy %.3g J above the "
+               "separating kinetic energy",
+               stick_since_, kinetic_0_ > 0.0 ? s.kinetic_rel / kinetic_0_ : 0.0,
+               s.bond_energy - s.kinetic_leaving)};
   }
   return std::nullopt;
 }
 
-VerdictDecision ImpactMonitor::at_end(const ImpactSample& s) const {
-  const bool held = s.links_active > 0 && s.v_normal <= k_held_speed * settings_.impact_speed;
-  if (held) {
-    return {ImpactVerdict::stick, false,
-            format("stick (not settled at the maximum time): links active, particle moving at "
-                   "%.4g m/s relative to the substrate, relative kinetic energy %.3g of initial",
-                   s.v_normal, kinetic_0_ > 0.0 ? s.kinetic_rel / kinetic_0_ : 0.0)};
+VerdictDecision ImpactMonitor::at_end(const ImpactSample& s) {
+  if (tearing(s)) {
+    return {ImpactVerdict::undecided, false,
+            format("undecided at the maximum time: the particle's centre moved %.3g m (%.3g R) "
+                   "away from its %.0f bonded nodes; the particle is tearing off its bond",
+                   s.bond_offset - min_offset_, (s.bond_offset - min_offset_) / settings_.radius,
+                   static_cast<double>(s.links_active))};
   }
-  return {ImpactVerdict::rebound, false,
-          format("rebound (not settled at the maximum time): particle moving at %.4g m/s away "
-                 "from the substrate with %.0f active links",
-                 s.v_normal, static_cast<double>(s.links_active))};
+  const bool calm = s.kinetic_rel <= settings_.settle_fraction * kinetic_0_;
+  if (s.v_normal < 0.0 && !calm) {
+    return {ImpactVerdict::undecided, false,
+            format("undecided at the maximum time: the particle still moves into the substrate "
+                   "at %.4g m/s (%.4g m/s across it), with %.0f links active",
+                   -s.v_normal, s.v_tangential, static_cast<double>(s.links_active))};
+  }
+  if (held(s)) {
+    return {ImpactVerdict::stick, false,
+            format("stick (not settled at the maximum time): %.0f links active hold %.3g J "
+                   "against a separating kinetic energy of %.3g J",
+                   static_cast<double>(s.links_active), s.bond_energy, s.kinetic_leaving)};
+  }
+  if (s.links_active == 0 && s.v_normal > 0.0) {
+    return {ImpactVerdict::rebound, false,
+            format("rebound (not settled at the maximum time): no active link, particle moving "
+                   "at %.4g m/s away from the substrate",
+                   s.v_normal, 0.0)};
+  }
+  if (s.links_active > 0) {
+    return {ImpactVerdict::undecided, false,
+            format("undecided at the maximum time: %.0f links active hold %.3g J but the "
+                   "particle carries %.3g J of separating kinetic energy (sliding or leaving)",
+                   static_cast<double>(s.links_active), s.bond_energy, s.kinetic_leaving)};
+  }
+  return {ImpactVerdict::undecided, false,
+          format("undecided at the maximum time: no active link and the particle at rest "
+                 "against the substrate (%.4g m/s along the normal, %.4g m/s across it)",
+                 s.v_normal, s.v_tangential)};
 }
 
 }  // namespace splat

@@ -4,19 +4,35 @@
 // Quantities (n = +z, the substrate normal pointing away from it):
 //   v_n      normal velocity of the particle's centre of mass relative to the
 //            substrate's, positive away from the substrate (m/s)
+//   v_t      tangential speed of that relative motion (m/s)
 //   K_rel    kinetic energy of the particle's motion relative to the
 //            substrate's centre of mass, 1/2 M |v_p - v_s|^2 (J)
+//   K_sep    the part of K_rel that can load the bond: 1/2 M (max(v_n, 0)^2
+//            + v_t^2) (J); motion into the substrate does not pull on it
+//   E_bond   budget the active links have left, sum of G_c A - W (J)
+//   d        height of the particle's centre of mass above the mean height of
+//            its bonded nodes (m); it shrinks while the particle flattens and
+//            recovers only elastically once it is held
 //   K_0      K_rel at impact
+// A particle is held when links are active, K_sep <= E_bond (the bond can
+// take all the separating energy the particle still has, whatever the impact
+// speed) and it is not tearing off its bonded nodes: d has not grown by more
+// than k_tear_fraction R above its smallest value since the links formed
+// (elastic recovery is a fraction of a percent of R; a particle whose bulk
+// leaves while the bonded surface stays behind grows d without bound).
 // Decided and settled (checked at every history row):
 //   rebound  no active link, no pair carrying a force, and v_n > 0, all held
 //            for `hold_time`: nothing can pull the particle back;
-//   stick    at least one active link and v_n <= 0.02 |v_impact| (not
-//            leaving), no link lost, bonded area steady (within 1 %) for
+//   stick    held, no link lost, bonded area steady (within 1 %) for
 //            `hold_time`, and K_rel <= settle_fraction K_0: the particle is
 //            held and its motion has died down.
-// At the maximum time without a settled verdict: stick if links are active
-// and v_n <= 0.02 |v_impact| (still held, not flying off), otherwise rebound;
-// the reason then says the state was not settled.
+// At the maximum time without a settled verdict: undecided while the particle
+// still moves into the substrate with more than settle_fraction K_0 (the
+// impact is not over); else stick if held, rebound if no link is active and
+// the particle leaves (v_n > 0), otherwise undecided: at rest without a
+// bond, or links active while the particle carries more separating energy
+// than they can take or tears off them. The reason says the state was not
+// settled.
 #pragma once
 
 #include <optional>
@@ -25,24 +41,34 @@
 namespace splat {
 
 struct ImpactSample {
-  double time = 0.0;         // s
-  double v_normal = 0.0;     // v_n, m/s
-  double kinetic_rel = 0.0;  // K_rel, J
+  double time = 0.0;             // s
+  double v_normal = 0.0;         // v_n, m/s
+  double v_tangential = 0.0;     // v_t, m/s
+  double kinetic_rel = 0.0;      // K_rel, J
+  double kinetic_leaving = 0.0;  // K_sep, J
   long long links_active = 0;
   long long pairs_in_contact = 0;  // pairs carrying a compressive force
   double bonded_area = 0.0;        // m^2
+  double bond_energy = 0.0;        // E_bond, J
+  double bond_offset = 0.0;        // d, m (0 without links)
 };
+
+// Growth of d above its smallest value since the links formed, over R, above
+// which the particle is tearing off its bond, -.
+inline constexpr double k_tear_fraction = 0.05;
 
 struct VerdictSettings {
   double settle_fraction = 0.01;  // K_rel / K_0 below which a held particle is settled, -
   double hold_time = 0.0;         // s, how long a verdict must hold before the run stops
-  double impact_speed = 0.0;      // |v_impact|, m/s
+  double radius = 0.0;            // R, the particle's initial radius, m
 };
 
-enum class ImpactVerdict { stick, rebound };
+enum class ImpactVerdict { stick, rebound, undecided };
+
+const char* to_string(ImpactVerdict v);
 
 struct VerdictDecision {
-  ImpactVerdict verdict = ImpactVerdict::rebound;
+  ImpactVerdict verdict = ImpactVerdict::undecided;
   bool settled = false;  // false: forced at the maximum time
   std::string reason;
 };
@@ -52,12 +78,18 @@ class ImpactMonitor {
  public:
   explicit ImpactMonitor(VerdictSettings settings) : settings_(settings) {}
 
-  // Feeds one sample; returns the decision once one is settled.
+  // Feeds one sample; returns the decision once one is settled (stick or
+  // rebound, never undecided).
   std::optional<VerdictDecision> update(const ImpactSample& s);
   // The verdict at the end of a run that was not settled (maximum time).
-  VerdictDecision at_end(const ImpactSample& s) const;
+  VerdictDecision at_end(const ImpactSample& s);
 
  private:
+  // Follows d; true when the particle tears off its bond (above).
+  bool tearing(const ImpactSample& s);
+  // Links active, the separating energy within what they can take, not tearing.
+  bool held(const ImpactSample& s);
+
   VerdictSettings settings_;
   double kinetic_0_ = -1.0;
   // Start of the current candidate window, or < 0 when none.
@@ -65,6 +97,8 @@ class ImpactMonitor {
   double stick_since_ = -1.0;
   long long stick_links_ = 0;
   double stick_area_ = 0.0;
+  double min_offset_ = 0.0;  // smallest d since the links formed, m
+  bool linked_ = false;      // links were active at the last sample
 };
 
 }  // namespace splat

@@ -144,6 +144,16 @@ nlohmann::json to_json(const RunSummary& s) {
     j["max_time"] = r.max_time;
     j["end_time_rule"] = r.adaptive ? "adaptive" : "fixed";
     j["model"] = {{"name", r.model}, {"why", r.why}};
+    j["bond_energy"] = r.bond_energy;
+    j["separating_kinetic_energy"] = r.separating_kinetic;
+    const GuardFigures& g = r.guard;
+    j["guard"] = {{"interpenetration_checked", g.interpenetration_checked},
+                  {"max_interpenetration", g.max_interpenetration},
+                  {"interpenetration_ratio", g.interpenetration_ratio},
+                  {"nodes_through", g.nodes_through},
+                  {"eroded_energy_fraction", g.eroded_energy_fraction},
+                  {"internal_energy_fraction", g.internal_energy_fraction},
+                  {"failed", g.failed}};
   }
   j["output"] = {{"hdf5", path_or_null(s.hdf5_path)}, {"xdmf", path_or_null(s.xdmf_path)}};
   return j;

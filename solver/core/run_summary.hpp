@@ -101,6 +101,18 @@ struct TwoMassSummary {
   double dt = 0.0;                     // s, time step used
 };
 
+// The physics checks of an impact run (solver/core/physics_guard.hpp), kept
+// whether they passed or not so that a campaign can show them.
+struct GuardFigures {
+  bool interpenetration_checked = false;  // false: an SPH substrate or a rigid wall
+  double max_interpenetration = 0.0;      // m, deepest particle node inside the substrate
+  double interpenetration_ratio = 0.0;    // -, that depth over the local element size
+  long long nodes_through = 0;            // nodes deeper than the limit
+  double eroded_energy_fraction = 0.0;    // -, eroded energy over the reference energy
+  double internal_energy_fraction = 0.0;  // -, internal energy over the reference energy
+  std::string failed;                     // name of the failed check, empty when all passed
+};
+
 // Figures of a particle_impact run (solver/core/impact_run.hpp says how each
 // is measured). Velocities along the substrate normal +z, positive away from
 // the substrate. Areas of the full body of revolution in axisymmetric runs.
@@ -131,6 +143,9 @@ struct ImpactSummary {
   bool adaptive = true;
   std::string model;  // fe-axisym, fe-3d-quarter, fe-3d-full
   std::string why;
+  GuardFigures guard;
+  double bond_energy = 0.0;         // J, budget the active links have left at the end
+  double separating_kinetic = 0.0;  // J, K_sep at the end (impact_verdict.hpp)
 };
 
 struct RunSummary {

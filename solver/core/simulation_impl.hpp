@@ -66,6 +66,7 @@ struct Simulation::Impl {
   void open_output();
   void write_history();
   void write_snapshot(bool final_state = false);
+  bool final_energy_check(RunSummary& s) const;
   void fill_summary(RunSummary& s) const;
   // SPH bodies (simulation_sph.cpp).
   bool sph_internal_forces_all(RunSummary& s);

@@ -503,6 +503,19 @@ FeStepResult fe_internal_forces_one_by_one(FeBody& body, NodeSet& nodes, double 
   return internal_forces(body, nodes, dt, false);
 }
 
+namespace {
+
+// Whether global node n still belongs to an active element of `body`.
+bool node_in_active_element(const FeBody& body, std::size_t n) {
+  const std::size_t local = n - body.node_begin;
+  for (int k = body.node_elem_offsets[local]; k < body.node_elem_offsets[local + 1]; ++k) {
+    if (body.active[static_cast<std::size_t>(body.node_elem_entries[k] / 8)]) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e) {
   ErodedEnergy out;
   const std::size_t k = static_cast<std::size_t>(e);
@@ -512,9 +525,13 @@ ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e) {
   const double share = body.element_mass[k] / npe;
   for (int a = 0; a < npe; ++a) {
     const std::size_t n = static_cast<std::size_t>(body.conn[k][a]);
-    const double m = std::min(share, nodes.mass[n]);
+    // A node left without an active element loses all its mass (exactly 0:
+    // the shares subtracted one by one leave a rounding residue that would
+    // keep it live, and every figure read off live nodes would see it).
+    const bool orphan = !node_in_active_element(body, n);
+    const double m = orphan ? nodes.mass[n] : std::min(share, nodes.mass[n]);
     out.kinetic += 0.5 * m * nodes.v[n].squaredNorm();
-    nodes.mass[n] = std::max(nodes.mass[n] - share, 0.0);
+    nodes.mass[n] = orphan ? 0.0 : std::max(nodes.mass[n] - share, 0.0);
   }
   out.internal = body.volume0[k] * body.state[k].e;
   out.mass = body.element_mass[k];

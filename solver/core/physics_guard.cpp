@@ -1,0 +1,254 @@
+#include "solver/core/physics_guard.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+namespace splat {
+namespace {
+
+struct Box {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -Vec3::Constant(std::numeric_limits<double>::infinity());
+  void add(const Vec3& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  bool contains(const Vec3& p) const {
+    return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+  }
+};
+
+// Crossing-number test of (r, z) point p in the quadrilateral x[0..3].
+bool inside_quad(const Vec3& p, const std::array<Vec3, 4>& x) {
+  bool in = false;
+  for (int a = 0, b = 3; a < 4; b = a++) {
+    const double ya = x[a].y(), yb = x[b].y();
+    if ((ya > p.y()) != (yb > p.y())) {
+      const double r = x[a].x() + (p.y() - ya) / (yb - ya) * (x[b].x() - x[a].x());
+      if (p.x() < r) in = !in;
+    }
+  }
+  return in;
+}
+
+// Whether a ray from p along d crosses triangle (a, b, c) (Moeller-Trumbore).
+bool ray_crosses(const Vec3& p, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 e1 = b - a, e2 = c - a;
+  const Vec3 q = d.cross(e2);
+  const double det = e1.dot(q);
+  if (std::abs(det) < 1e-300) return false;
+  const Vec3 s = p - a;
+  const double u = s.dot(q) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const Vec3 r = s.cross(e1);
+  const double v = d.dot(r) / det;
+  if (v < 0.0 || u + v > 1.0) return false;
+  return e2.dot(r) / det > 0.0;
+}
+
+// Faces of a hexahedron (hex8.hpp node order), outward.
+constexpr std::array<std::array<int, 4>, 6> k_hex_faces{
+    {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
+
+// Crossing-number test of p in the hexahedron x[0..7], faces split in two
+// triangles; the ray direction is skewed off the mesh axes.
+bool inside_hex(const Vec3& p, const std::array<Vec3, 8>& x) {
+  const Vec3 d = Vec3(1.0, 0.3127, 0.1713).normalized();
+  int crossings = 0;
+  for (const auto& f : k_hex_faces) {
+    crossings += ray_crosses(p, d, x[f[0]], x[f[1]], x[f[2]]);
+    crossings += ray_crosses(p, d, x[f[0]], x[f[2]], x[f[3]]);
+  }
+  return crossings % 2 == 1;
+}
+
+double segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+// Distance from p to triangle (a, b, c) (closest point by region, Ericson 2005, 5.1.5).
+double triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double n2 = n.squaredNorm();
+  if (n2 > 0.0) {
+    const Vec3 q = p - n * ((p - a).dot(n) / n2);
+    const double w_a = (b - q).cross(c - q).dot(n), w_b = (c - q).cross(a - q).dot(n),
+                 w_c = (a - q).cross(b - q).dot(n);
+    if (w_a >= 0.0 && w_b >= 0.0 && w_c >= 0.0) return (p - q).norm();
+  }
+  return std::min(
+      {segment_distance(p, a, b), segment_distance(p, b, c), segment_distance(p, c, a)});
+}
+
+// Uniform grid of element bounding boxes.
+class ElementGrid {
+ public:
+  ElementGrid(const std::vector<Box>& boxes, const std::vector<int>& ids, double cell)
+      : cell_(cell) {
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const auto lo = key3(boxes[k].lo), hi = key3(boxes[k].hi);
+      for (long long i = lo[0]; i <= hi[0]; ++i)
+        for (long long j = lo[1]; j <= hi[1]; ++j)
+          for (long long l = lo[2]; l <= hi[2]; ++l) cells_[hash(i, j, l)].push_back(ids[k]);
+    }
+  }
+  const std::vector<int>* at(const Vec3& p) const {
+    const auto k = key3(p);
+    const auto it = cells_.find(hash(k[0], k[1], k[2]));
+    return it == cells_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  std::array<long long, 3> key3(const Vec3& p) const {
+    return {static_cast<long long>(std::floor(p.x() / cell_)),
+            static_cast<long long>(std::floor(p.y() / cell_)),
+            static_cast<long long>(std::floor(p.z() / cell_))};
+  }
+  static long long hash(long long i, long long j, long long l) {
+    return (i * 73856093LL) ^ (j * 19349663LL) ^ (l * 83492791LL);
+  }
+  double cell_;
+  std::unordered_map<long long, std::vector<int>> cells_;
+};
+
+bool node_live(const Model& model, std::size_t i) {
+  return model.nodes.mass[i] > 0.0;
+}
+
+// Distance from p to the live master faces of interface c.
+double surface_distance(const Model& model, const ContactInterface& c, const Vec3& p) {
+  const ContactSurface& s = c.master_surface();
+  const std::vector<Vec3>& x = model.nodes.x;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    if (!c.master_face_live(f)) continue;
+    const auto& ids = s.faces[f];
+    if (s.kind == DetectionKind::node_on_segment) {
+      if (!node_live(model, ids[0]) || !node_live(model, ids[1])) continue;
+      best = std::min(best, segment_distance(p, x[ids[0]], x[ids[1]]));
+    } else if (s.kind == DetectionKind::node_on_quad) {
+      if (!node_live(model, ids[0]) || !node_live(model, ids[1]) || !node_live(model, ids[2]) ||
+          !node_live(model, ids[3]))
+        continue;
+      best = std::min({best, triangle_distance(p, x[ids[0]], x[ids[1]], x[ids[2]]),
+                       triangle_distance(p, x[ids[0]], x[ids[2]], x[ids[3]])});
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+Interpenetration measure_interpenetration(const Model& model, const GuardInput& in) {
+  Interpenetration out;
+  if (in.particle < 0 || in.substrate < 0 || in.contact < 0) return out;
+  const BodyRef& sub_ref = model.body_refs[static_cast<std::size_t>(in.substrate)];
+  if (sub_ref.sph) return out;
+  const ContactInterface& contact = model.contacts[static_cast<std::size_t>(in.contact)];
+  if (contact.master_surface().kind == DetectionKind::particle_pinball) return out;
+  out.checked = true;
+  const FeBody& sub = model.bodies[sub_ref.index];
+  const std::size_t p_begin = body_node_begin(model, static_cast<std::size_t>(in.particle));
+  const std::size_t p_end = body_node_end(model, static_cast<std::size_t>(in.particle));
+  const std::vector<Vec3>& x = model.nodes.x;
+  Box particle_box;
+  for (std::size_t i = p_begin; i < p_end; ++i) {
+    if (node_live(model, i)) particle_box.add(x[i]);
+  }
+  // Live substrate elements that overlap the particle's box.
+  const int npe = sub.nodes_per_element();
+  std::vector<Box> boxes;
+  std::vector<int> ids;
+  double size_sum = 0.0;
+  for (std::size_t e = 0; e < sub.num_elements(); ++e) {
+    if (!sub.active[e]) continue;
+    Box b;
+    for (int a = 0; a < npe; ++a) b.add(x[sub.conn[e][a]]);
+    if ((b.hi.array() < particle_box.lo.array()).any() ||
+        (b.lo.array() > particle_box.hi.array()).any())
+      continue;
+    boxes.push_back(b);
+    ids.push_back(static_cast<int>(e));
+    size_sum += (b.hi - b.lo).maxCoeff();
+  }
+  if (ids.empty()) return out;
+  const ElementGrid grid(boxes, ids, size_sum / static_cast<double>(ids.size()));
+  std::vector<Box> box_of(sub.num_elements());
+  for (std::size_t k = 0; k < ids.size(); ++k) box_of[ids[k]] = boxes[k];
+  for (std::size_t i = p_begin; i < p_end; ++i) {
+    if (!node_live(model, i)) continue;
+    const std::vector<int>* candidates = grid.at(x[i]);
+    if (!candidates) continue;
+    for (int e : *candidates) {
+      if (!box_of[e].contains(x[i])) continue;
+      bool inside = false;
+      if (sub.kind == ElementKind::quad4_axisym) {
+        inside = inside_quad(
+            x[i], {x[sub.conn[e][0]], x[sub.conn[e][1]], x[sub.conn[e][2]], x[sub.conn[e][3]]});
+      } else {
+        std::array<Vec3, 8> xe;
+        for (int a = 0; a < 8; ++a) xe[a] = x[sub.conn[e][a]];
+        inside = inside_hex(x[i], xe);
+      }
+      if (!inside) continue;
+      const double depth = surface_distance(model, contact, x[i]);
+      if (!std::isfinite(depth)) break;
+      const double h = std::max(sub.char_length[e], 1e-300);
+      out.max_depth = std::max(out.max_depth, depth);
+      out.max_ratio = std::max(out.max_ratio, depth / h);
+      if (depth > k_interpenetration_limit * h) ++out.nodes_through;
+      break;
+    }
+  }
+  return out;
+}
+
+std::string check_physics(const Model& model, const EnergyBudget& energy, const GuardInput& in,
+                          GuardFigures& figures, std::string& reason) {
+  const Interpenetration p = measure_interpenetration(model, in);
+  figures.interpenetration_checked = p.checked;
+  figures.max_interpenetration = p.max_depth;
+  figures.interpenetration_ratio = p.max_ratio;
+  figures.nodes_through = p.nodes_through;
+  const double reference =
+      std::max(energy.initial_total + std::max(energy.external_work, 0.0), 1e-300);
+  figures.eroded_energy_fraction = energy.eroded / reference;
+  figures.internal_energy_fraction = energy.internal / reference;
+  char buf[320];
+  if (p.nodes_through > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "interpenetration: %lld particle node(s) inside the substrate deeper than %.2g "
+                  "of the local element size (deepest %.3g m, %.2f element sizes); the contact "
+                  "let the particle through",
+                  p.nodes_through, k_interpenetration_limit, p.max_depth, p.max_ratio);
+    reason = buf;
+    return figures.failed = "interpenetration";
+  }
+  if (energy.eroded < -in.energy_limit * reference) {
+    std::snprintf(buf, sizeof buf,
+                  "negative eroded energy: %.3g of the reference energy (limit -%.3g); the "
+                  "erosion bookkeeping broke",
+                  figures.eroded_energy_fraction, in.energy_limit);
+    reason = buf;
+    return figures.failed = "negative-eroded-energy";
+  }
+  if (energy.internal < -in.energy_limit * reference) {
+    std::snprintf(buf, sizeof buf,
+                  "negative internal energy: %.3g of the reference energy (limit -%.3g)",
+                  figures.internal_energy_fraction, in.energy_limit);
+    reason = buf;
+    return figures.failed = "negative-internal-energy";
+  }
+  figures.failed.clear();
+  return {};
+}
+
+}  // namespace splat

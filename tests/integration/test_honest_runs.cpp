@@ -1,0 +1,73 @@
+// Honest runs (issue 22): a run whose physics broke never reports a verdict or
+// `finished`. Each test reproduces one way a run used to break and still end
+// with a normal outcome, and checks the run now either stays sound (the
+// conserved quantity within its tolerance) or ends `unstable` naming the check.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "solver/input/schema.hpp"
+#include "support/scene_runs.hpp"
+
+namespace splat {
+namespace {
+
+using nlohmann::json;
+
+json run(const std::string& scene, const std::string& sets = "") {
+  const test_support::CommandOutput o = test_support::run_splat(
+      "run " + std::string(SPLAT_SOURCE_DIR) + "/" + scene + " --json --threads 1 " + sets, false);
+  json s = json::parse(o.stdout_text, nullptr, false);
+  EXPECT_FALSE(s.is_discarded()) << o.stdout_text;
+  if (s.is_discarded()) return json::object();
+  for (const SchemaViolation& v : validate("result", s)) ADD_FAILURE() << to_string(v);
+  // Exit 0 only with a verdict or at the end time (cmd_run.cpp).
+  const std::string outcome = s.value("outcome", "");
+  EXPECT_EQ(o.code == 0, outcome == "stick" || outcome == "rebound" || outcome == "finished")
+      << outcome << " exit " << o.code;
+  return s;
+}
+
+// Item 2: the thesis's 1 mm Cu/Cu shot at 457 m/s drove 38 particle nodes up
+// to 3.2 element sizes deep into the substrate and ended `rebound`, exit 0.
+// The guard measures each particle node inside a substrate element against
+// the substrate surface (physics_guard.hpp). The contact still lets the
+// particle through at this resolution (a contact issue of its own): what is
+// checked here is that the run says so.
+TEST(honest_runs, interpenetration_is_never_a_verdict) {
+  const json s = run("scenes/verification/cu_1mm_457.json");
+  const json& g = s["guard"];
+  ASSERT_TRUE(g["interpenetration_checked"].get<bool>());
+  EXPECT_EQ(s["outcome"], "unstable");
+  EXPECT_EQ(s["stop_reason"], "interpenetration") << s["reason"];
+  EXPECT_EQ(s["verdict"], "none");
+  EXPECT_GT(g["nodes_through"].get<long long>(), 0);
+  EXPECT_GT(g["interpenetration_ratio"].get<double>(), 0.5);
+}
+
+// The same guard passes a sound run: the thesis Al/Al scene at 500 m/s has
+// no particle node inside the substrate.
+TEST(honest_runs, sound_impact_passes_the_guard) {
+  const json s = run("scenes/impact_al_al.json");
+  EXPECT_EQ(s["guard"]["failed"], "") << s["reason"];
+  EXPECT_EQ(s["guard"]["nodes_through"].get<long long>(), 0);
+  EXPECT_LE(s["guard"]["interpenetration_ratio"].get<double>(), 0.5);
+}
+
+// Item 3: after the bounce the sphere flies freely, yet the booked stiffness
+// hourglass energy grew by 4 % per 180 ns and the run ended `unstable`
+// (energy balance) at 248 ns. Mid-point booking keeps the hourglass work
+// equal to the stored energy: the balance stays within 1 % at 600 ns.
+TEST(honest_runs, stiffness_hourglass_energy_does_not_drift) {
+  const json s = run("scenes/elastic_sphere_bounce_3d.json", "--set /time/end_time=6e-7");
+  EXPECT_EQ(s["outcome"], "finished") << s["reason"];
+  const json& e = s["energy"];
+  const double E0 = e["initial_total"].get<double>();
+  EXPECT_LT(std::abs(e["balance_error"].get<double>()), 0.01);
+  EXPECT_LT(std::abs(e["hourglass"].get<double>()) / E0, 0.01);
+}
+
+}  // namespace
+}  // namespace splat
