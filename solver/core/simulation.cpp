@@ -58,40 +58,73 @@ bool Simulation::axisymmetric() const {
   return impl_->model.axisymmetric;
 }
 
+namespace {
+
+// Velocity update of a node with dashpot matrix C, its force at the
+// mid-point of the update: (m I + dt C / 2) v = m v_old + dt f - dt C v_old / 2.
+Vec3 dashpot_update(double m, const Vec3& v_old, const Vec3& f, const Mat3& C, double dt) {
+  const Mat3 A = m * Mat3::Identity() + (0.5 * dt) * C;
+  return A.inverse() * (m * v_old + dt * f - (0.5 * dt) * (C * v_old));
+}
+
+}  // namespace
+
 // Stage 1: central-difference velocity update, then velocity constraints and
 // rigid walls. The work of the constraint reactions R = m (v - v_free) / dt
 // over the coming displacement dt v is booked as external (or wall) work;
 // in the first step, where a constraint sets the velocity (a jump from the
 // initial velocity), the kinetic energy change of that jump is.
+// Nodes of absorbing faces take their dashpot force -C v at the mid-point of
+// the update (trapezoidal rule): (m I + dt C / 2) v_new = m v_old + dt f -
+// dt C v_old / 2. Unconditionally stable, where the force on the old
+// velocity is stable only for dt C / m < 2 and, with the element stiffness,
+// blew up a uniform 3D mesh at the default stability coefficient; the
+// absorbed energy dt v_mid . C v_mid is what the dashpot takes out.
 void Simulation::Impl::update_velocities(bool first) {
   NodeSet& n = model.nodes;
   const double dt_v = first ? 0.5 * dt_half : 0.5 * (dt_half_prev + dt_half);
   const std::size_t count = n.size();
   const Vec3 sph_power = sph_dissipative_power();
-  const double ext_work =
-      block_sum(count, node_block, min_parallel_nodes, 0.0, [&](std::size_t lo, std::size_t hi) {
-        double work = 0.0;
+  const bool damped = !damped_slot.empty();
+  const Vec2 works = block_sum(
+      count, node_block, min_parallel_nodes, Vec2(Vec2::Zero()),
+      [&](std::size_t lo, std::size_t hi) {
+        double work = 0.0, absorbed = 0.0;
         for (std::size_t i = lo; i < hi; ++i) {
           const double m = n.mass[i];
           if (m <= 0.0) continue;  // node of eroded elements only
-          Vec3 v = n.v[i] + (dt_v / m) * n.f[i];
+          const Vec3 v_old = n.v[i];
+          const int slot = damped ? damped_slot[i] : -1;
+          const Mat3* C = slot >= 0 ? &node_damping[static_cast<std::size_t>(slot)] : nullptr;
+          Vec3 v = C ? dashpot_update(m, v_old, n.f[i], *C, dt_v) : v_old + (dt_v / m) * n.f[i];
           const std::uint8_t mask = model.constraint_mask[i];
           if (mask != 0) {
             const Vec3 v_free = v;
             for (int c = 0; c < 3; ++c) {
               if (mask & (1u << c)) v[c] = model.constraint_value[i][c];
             }
+            // The constraint's impulse over the update: what it adds to m v
+            // beyond the forces (and the dashpot's mid-point force).
+            const Vec3 impulse =
+                C ? Vec3(m * (v - v_old) - dt_v * (n.f[i] - *C * (0.5 * (v_old + v))))
+                  : Vec3(m * (v - v_free));
             // The first step sets the prescribed velocity, a jump from the
             // initial one where they differ: the constraint's impulse makes
             // the kinetic energy change m dv (v_free + v) / 2 (as a node
             // landing on a wall).
-            work += first ? 0.5 * m * (v - v_free).dot(v + v_free)
-                          : m * (v - v_free).dot(v) * dt_half / dt_v;
+            work +=
+                first ? 0.5 * m * (v - v_free).dot(v + v_free) : impulse.dot(v) * dt_half / dt_v;
+          }
+          if (C) {
+            const Vec3 v_mid = 0.5 * (v_old + v);
+            absorbed += dt_v * v_mid.dot(*C * v_mid);
           }
           n.v[i] = v;
         }
-        return work;
+        return Vec2(work, absorbed);
       });
+  const double ext_work = works.x();
+  energy.absorbed += works.y() * scale();
   double wall_work = 0.0;
   // A node the wall held in the last step books the reaction's work over the
   // coming displacement, as the constraints above; a node landing on the wall
@@ -179,9 +212,9 @@ bool Simulation::Impl::internal_forces(RunSummary& s) {
   return sph_internal_forces_all(s);
 }
 
-// Viscous forces of an absorbing face on its nodes (stage 5).
-FaceForces absorbing_face_forces(const AbsorbingFace& face, const NodeSet& n) {
-  FaceForces out;
+// Dashpot matrix of an absorbing face on each of its nodes (stage 5).
+FaceDamping absorbing_face_damping(const AbsorbingFace& face, const NodeSet& n) {
+  FaceDamping out;
   Vec3 normal;
   double area;
   if (face.count == 2) {  // axisymmetric segment a -> b, outward normal on the right
@@ -201,19 +234,53 @@ FaceForces absorbing_face_forces(const AbsorbingFace& face, const NodeSet& n) {
     if (area <= 0.0) return out;
     normal = av / area;
   }
-  const double share = area / face.count;
-  for (int k = 0; k < face.count; ++k) {
-    const Vec3& v = n.v[face.nodes[k]];
-    const double vn = v.dot(normal);
-    out.f[k] = -share * (face.rho_cp * vn * normal + face.rho_cs * (v - vn * normal));
-  }
+  const Mat3 nn = normal * normal.transpose();
+  out.c = (area / face.count) * (face.rho_cp * nn + face.rho_cs * (Mat3::Identity() - nn));
   out.live = true;
   return out;
 }
 
-// Stage 5: penalty contact forces, then viscous absorbing boundaries,
-// f = -A (rho c_p v_n n + rho c_s v_t) on each node's share A of a boundary
-// face (Lysmer & Kuhlemeyer 1969).
+// Slots of the nodes of absorbing faces (once, before the first step).
+void Simulation::Impl::setup_absorbing() {
+  damped_slot.clear();
+  node_damping.clear();
+  if (model.absorbing.empty()) return;
+  damped_slot.assign(model.nodes.size(), -1);
+  int slots = 0;
+  for (const AbsorbingFace& face : model.absorbing) {
+    for (int k = 0; k < face.count; ++k) {
+      int& slot = damped_slot[static_cast<std::size_t>(face.nodes[k])];
+      if (slot < 0) slot = slots++;
+    }
+  }
+  node_damping.assign(static_cast<std::size_t>(slots), Mat3::Zero());
+}
+
+// The dashpot matrices at the current positions: each face's in parallel,
+// then summed on its nodes face by face (faces share nodes), in face order.
+void Simulation::Impl::absorbing_damping() {
+  const std::size_t faces = model.absorbing.size();
+  if (faces == 0) return;
+  face_damping.resize(faces);
+  for_each_block(faces, face_block, min_parallel_faces, [&](std::size_t lo, std::size_t hi) {
+    for (std::size_t k = lo; k < hi; ++k) {
+      face_damping[k] = absorbing_face_damping(model.absorbing[k], model.nodes);
+    }
+  });
+  std::fill(node_damping.begin(), node_damping.end(), Mat3::Zero());
+  for (std::size_t k = 0; k < faces; ++k) {
+    if (!face_damping[k].live) continue;
+    const AbsorbingFace& face = model.absorbing[k];
+    for (int j = 0; j < face.count; ++j) {
+      node_damping[static_cast<std::size_t>(damped_slot[face.nodes[j]])] += face_damping[k].c;
+    }
+  }
+}
+
+// Stage 5: penalty contact forces, then the dashpot matrices of the viscous
+// absorbing boundaries at x_{n+1}, C = A (rho c_p n n^T + rho c_s (I - n n^T))
+// on each node's share A of a boundary face (Lysmer & Kuhlemeyer 1969),
+// applied in the next velocity update (stage 1).
 void Simulation::Impl::boundary_forces() {
   NodeSet& n = model.nodes;
   for (ContactInterface& c : model.contacts) {
@@ -221,28 +288,7 @@ void Simulation::Impl::boundary_forces() {
       c.penalty_forces(n, model.constraint_mask, dt_half);
     }
   }
-  // Each face's nodal forces in parallel, then added to its nodes face by
-  // face (faces share nodes): the same sums, in the same order, as one face
-  // after the other.
-  const std::size_t faces = model.absorbing.size();
-  absorbing_forces.resize(faces);
-  for_each_block(faces, face_block, min_parallel_faces, [&](std::size_t lo, std::size_t hi) {
-    for (std::size_t k = lo; k < hi; ++k) {
-      absorbing_forces[k] = absorbing_face_forces(model.absorbing[k], n);
-    }
-  });
-  double power = 0.0;
-  for (std::size_t k = 0; k < faces; ++k) {
-    const AbsorbingFace& face = model.absorbing[k];
-    const FaceForces& ff = absorbing_forces[k];
-    if (!ff.live) continue;
-    for (int j = 0; j < face.count; ++j) {
-      const int i = face.nodes[j];
-      n.f[i] += ff.f[j];
-      power += ff.f[j].dot(n.v[i]);
-    }
-  }
-  energy.absorbed -= power * dt_half * scale();
+  absorbing_damping();
   sph_boundary_forces();
 }
 
@@ -359,9 +405,11 @@ RunSummary Simulation::run() {
 #endif
   try {
     s.open_output();
-    // Initial state: forces of the initial velocities on absorbing faces.
+    // Initial state: no force yet; the dashpots of the absorbing faces at x_0.
     NodeSet& n = s.model.nodes;
     std::fill(n.f.begin(), n.f.end(), Vec3::Zero());
+    s.setup_absorbing();
+    s.absorbing_damping();
     // The first step is capped by the closing speed too; the time-step floor
     // stays relative to the elastic bound.
     s.closing_speed = initial_closing_speed(s.model);

@@ -19,13 +19,15 @@
 
 namespace splat {
 
-// Nodal forces of one absorbing face (stage 5); live = false for a face
-// collapsed to zero area.
-struct FaceForces {
-  std::array<Vec3, 4> f;
+// Dashpot matrix of one absorbing face on each of its nodes (equal shares):
+// C = (A / count) (rho c_p n n^T + rho c_s (I - n n^T)), kg/s (per radian in
+// 2D), on the face's current area A and normal n (Lysmer & Kuhlemeyer 1969);
+// live = false for a face collapsed to zero area.
+struct FaceDamping {
+  Mat3 c = Mat3::Zero();
   bool live = false;
 };
-FaceForces absorbing_face_forces(const AbsorbingFace& face, const NodeSet& n);
+FaceDamping absorbing_face_damping(const AbsorbingFace& face, const NodeSet& n);
 
 struct Simulation::Impl {
   Scene scene;
@@ -50,7 +52,12 @@ struct Simulation::Impl {
   // particle_impact scenes: the verdict monitor and the latest settled verdict.
   std::optional<ImpactRun> impact;
   std::optional<VerdictDecision> verdict;
-  std::vector<FaceForces> absorbing_forces;  // stage 5 scratch, one per absorbing face
+  // Absorbing faces: per node, the slot of its dashpot matrix (-1: none; set
+  // once), and the matrices, summed over the node's faces at the positions of
+  // the last stage 5; face_damping is the per-face scratch.
+  std::vector<int> damped_slot;
+  std::vector<Mat3> node_damping;
+  std::vector<FaceDamping> face_damping;
 
   // Energy factor: axisymmetric quantities are per radian.
   double scale() const { return model.axisymmetric ? 2.0 * std::numbers::pi : 1.0; }
@@ -60,6 +67,8 @@ struct Simulation::Impl {
   void contact_constraints();
   bool internal_forces(RunSummary& s);
   void boundary_forces();
+  void setup_absorbing();
+  void absorbing_damping();
   void compute_energies();
   std::optional<std::pair<RunOutcome, std::string>> checks(
       const std::chrono::steady_clock::time_point& start, std::string& stop_reason);
