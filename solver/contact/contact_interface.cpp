@@ -696,6 +696,19 @@ void ContactInterface::correct_positions(NodeSet& nodes, const std::vector<Detec
   stats_.max_position_correction = std::max(stats_.max_position_correction, moved);
 }
 
+double ContactInterface::soft_penalty_stiffness(std::size_t i, const Vec3& normal,
+                                                double dt) const {
+  if (!(settings_.penalty_mass_scale > 0.0) || !(dt > 0.0)) return 0.0;
+  double h = 0.0;  // 1/kg
+  for (int s = 0; s < 5; ++s) {
+    const int id = problem_.node[i][s];
+    if (id < 0) continue;
+    const double c = problem_.coef[i][s];
+    h += c * c * normal.dot(problem_.inv_mass[id].cwiseProduct(normal));
+  }
+  return h > 0.0 ? settings_.penalty_mass_scale / (h * dt * dt) : 0.0;
+}
+
 void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
                                       double dt) {
   penalty_nodes_.clear();
@@ -715,7 +728,8 @@ void ContactInterface::penalty_forces(NodeSet& nodes, const std::vector<std::uin
     if (g.gap >= 0.0) continue;
     const bool second = i >= first_pass_pairs_;
     const double area = slave_node_area(second ? master_ : slave_, pairs[i].slave, nodes.x);
-    const double k = settings_.penalty_stiffness * area;  // N/m (per radian in 2D)
+    const double k = std::max(settings_.penalty_stiffness * area,
+                              soft_penalty_stiffness(i, g.normal, dt));  // N/m (per radian in 2D)
     const double fn = -k * g.gap;
     stored += 0.5 * k * g.gap * g.gap;
     stats_.max_penetration = std::max(stats_.max_penetration, -g.gap);

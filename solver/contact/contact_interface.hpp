@@ -56,6 +56,13 @@ struct ContactSettings {
   ContactMethod method = ContactMethod::lagrange;
   double friction = 0.0;           // Coulomb coefficient, -
   double penalty_stiffness = 0.0;  // kappa, Pa/m (force per area per penetration)
+  // Penalty, stiffness not given: each pair's spring is at least
+  // penalty_mass_scale m_eff / dt^2 (m_eff = 1 / h, the pair's effective mass
+  // along the normal; the "soft constraint" of explicit codes), so that it
+  // stops a node arriving at impact speed within a few steps whatever the
+  // material stiffness; 0: off. Stable: an undamped spring on m_eff is stable
+  // up to 4 m_eff / dt^2.
+  double penalty_mass_scale = 0.0;  // -
   // Also pair the master's nodes with the slave's faces (symmetric, two-pass
   // node-to-surface). One pass (the thesis's sliding surfaces) lets master
   // nodes sink into the slave between its nodes and fails the contact patch
@@ -173,6 +180,8 @@ class ContactInterface {
   void correct_positions(NodeSet& nodes, const std::vector<DetectedPair>& pairs,
                          const ContactSolution& sol, double dt);
   double scale() const;
+  // Penalty: the soft-constraint spring of pair i (ContactSettings), N/m.
+  double soft_penalty_stiffness(std::size_t i, const Vec3& normal, double dt) const;
   // Link state changes before the solve (activation, erosion, first touch)
   // from the material state of both sides; sets the areas of new links.
   void update_links_before_solve(const NodeSet& nodes, const std::vector<FeBody>& bodies,

@@ -407,6 +407,7 @@ Model build_model(const Scene& scene) {
         const double K = std::min(bulk_modulus_of(mb), bulk_modulus_of(sb));
         if (!std::isfinite(h) || !(h > 0.0)) fail(ptr + "/master", "the body has no contact faces");
         cs.penalty_stiffness = 0.1 * K / h;
+        cs.penalty_mass_scale = 0.1;
       }
     }
     model.contacts.emplace_back(it.master, it.slave, std::move(master),
