@@ -1,20 +1,25 @@
 #!/usr/bin/env bash
 # Sets everything up (Debian packages, configure, build, the dashboard's npm
 # packages from web/package-lock.json and Debian's chromium for the `browser`
-# label) and runs the default test set: every ctest label except `long` and
+# label) and runs the default test set: every ctest label except `long`, `extremes` and
 # `slurm` (so `api` and `browser` too), then the unit and API tests
 # once more under AddressSanitizer + UndefinedBehaviorSanitizer, then the
 # `slurm` label (installs slurm-wlm and munge, starts and stops its own
 # one-node cluster; fails clearly if they cannot be installed). Idempotent.
 #   scripts/test.sh            # what CI runs
 #   scripts/test.sh --long     # the long verification runs only (label `long`)
+#   scripts/test.sh --extremes # the extremes matrix only (label `extremes`: every
+#                              # fidelity rung x 1-3000 m/s x two resolutions x
+#                              # adhesion x Al/Al, Cu/Cu; hours on 2 cores; tables
+#                              # in build/test-artifacts/extremes_*.md)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 jobs="$(nproc)"
 
-if [ "${1:-}" = "--long" ]; then
+if [ "${1:-}" = "--long" ] || [ "${1:-}" = "--extremes" ]; then
+  label="${1#--}"
   "$here/scripts/setup.sh" "$here/build"
-  ctest --test-dir "$here/build" -L long --output-on-failure -j "$jobs"
+  ctest --test-dir "$here/build" -L "$label" --output-on-failure -j "$jobs"
   exit 0
 fi
 
@@ -40,7 +45,7 @@ fi
 # cmake looks for node when it configures the `browser` test.
 cmake -S "$here" -B "$here/build" >/dev/null
 
-ctest --test-dir "$here/build" -LE 'long|slurm' --output-on-failure -j "$jobs"
+ctest --test-dir "$here/build" -LE 'long|slurm|extremes' --output-on-failure -j "$jobs"
 echo "test: dashboard screenshot in $here/build/test-artifacts/dashboard.png"
 
 # Sanitizer pass over the unit and API tests (debug info, no benchmarks; only
