@@ -87,14 +87,16 @@ struct Cell {
 
 // Runs one scene and checks the invariants of the header; returns its cell.
 Cell run_and_check(const json& scene, double v, bool adhesion) {
-  const auto file = std::filesystem::temp_directory_path() /
-                    ("splat_extremes_" + std::to_string(getpid()) + ".json");
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("splat_extremes_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "scene.json";
   json doc = scene;
   doc["time"] = {{"wall_clock_limit", k_wall_limit}};
   std::ofstream(file) << doc.dump();
-  const test_support::CommandOutput o =
-      test_support::run_splat("run " + file.string() + " --json --threads 1", false);
-  std::filesystem::remove(file);
+  const test_support::CommandOutput o = test_support::run_splat(
+      "run " + file.string() + " --json --threads 1 --out " + (dir / "out").string(), false);
+  std::filesystem::remove_all(dir);
   Cell c;
   if (o.code < 0) return {"CRASH", "killed by a signal or could not start"};
   const json s = json::parse(o.stdout_text, nullptr, false);
