@@ -177,6 +177,22 @@ inline double work_budget(const AdhesionParams& p, double area) {
   return p.G_c * area;
 }
 
+// Length of the process zone of this law, a Dugdale-Barenblatt interface
+// (traction sigma_c over an opening G_c / sigma_c), at the tip of a crack
+// between two elastic sides (Rice 1968, Dugdale strip-yield model):
+//   l_cz = (pi / 8) E' G_c / sigma_c^2,  2 / E' = 1 / E'_1 + 1 / E'_2,
+//   E'_i = E_i / (1 - nu_i^2) (plane strain), m.
+// An interface resolves its process zone with l_cz / h elements of size h
+// (Turon et al. 2007 ask for a few). Without a cap (sigma_c absent) the links
+// are rigid until their budget is spent: a zone of zero length (0 here),
+// which no mesh resolves.
+inline double cohesive_zone_length(const AdhesionParams& p, double E1, double nu1, double E2,
+                                   double nu2) {
+  if (!p.sigma_c || !(*p.sigma_c > 0.0)) return 0.0;
+  const double E_plane = 2.0 / ((1.0 - nu1 * nu1) / E1 + (1.0 - nu2 * nu2) / E2);
+  return 0.125 * 3.14159265358979323846 * E_plane * p.G_c / (*p.sigma_c * *p.sigma_c);
+}
+
 // The motion of one pair in one step, as cohesive_step needs it.
 struct LinkKinematics {
   double g_prev = 0.0;      // separation rate at the start of the step, m/s

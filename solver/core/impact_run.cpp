@@ -157,6 +157,49 @@ ImpactSample ImpactRun::sample(double time, const Model& model) const {
   return s;
 }
 
+void ImpactRun::cohesive_zone(const Model& model, ImpactSummary& r) const {
+  const ContactInterface& c = model.contacts[contact_];
+  if (!c.settings().adhesion) return;
+  const BodyRef& p = model.body_refs[particle_];
+  const Material& mp = p.sph ? model.sph_bodies[p.index].material : model.bodies[p.index].material;
+  const Material* ms = &mp;
+  if (substrate_ >= 0) {
+    const BodyRef& s = model.body_refs[substrate_];
+    ms = s.sph ? &model.sph_bodies[s.index].material : &model.bodies[s.index].material;
+  }
+  r.cohesive_zone_length = cohesive_zone_length(*c.settings().adhesion, mp.elastic.E, mp.elastic.nu,
+                                                ms->elastic.E, ms->elastic.nu);
+  if (p.sph) {
+    r.interface_element_size = model.sph_bodies[p.index].spacing;
+  } else {
+    // Faces of the particle's surface with a node that touched (all faces
+    // when none did), on the initial mesh.
+    const ContactSurface& surface = c.slave_surface();
+    const std::vector<LinkState>& states = c.link_states();
+    double sum = 0.0, sum_all = 0.0;
+    long long n = 0;
+    for (std::size_t f = 0; f < surface.faces.size(); ++f) {
+      const double size = face_size(surface, static_cast<int>(f), model.nodes.x0);
+      sum_all += size;
+      for (int k = 0; k < surface.nodes_per_face(); ++k) {
+        const auto it =
+            std::lower_bound(surface.nodes.begin(), surface.nodes.end(), surface.faces[f][k]);
+        const std::size_t idx = static_cast<std::size_t>(it - surface.nodes.begin());
+        if (idx < states.size() && states[idx] != LinkState::none) {
+          sum += size;
+          ++n;
+          break;
+        }
+      }
+    }
+    const double faces = static_cast<double>(surface.faces.size());
+    r.interface_element_size =
+        n > 0 ? sum / static_cast<double>(n) : (faces > 0 ? sum_all / faces : 0.0);
+  }
+  r.cohesive_zone_elements =
+      r.interface_element_size > 0.0 ? r.cohesive_zone_length / r.interface_element_size : 0.0;
+}
+
 double ImpactRun::bonded_height(const Model& model) const {
   const ContactInterface& c = model.contacts[contact_];
   const std::vector<LinkState>& states = c.link_states();
@@ -250,6 +293,7 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
       r.contact_area += slave_node_area(c.slave_surface(), static_cast<int>(k), model.nodes.x);
     }
     r.contact_area *= scale;
+    cohesive_zone(model, r);
     r.bonded_fraction = r.contact_area > 0.0 ? std::min(r.bonded_area / r.contact_area, 1.0) : 0.0;
   } else {
     r.links_contact = now.pairs_in_contact;
@@ -326,13 +370,27 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
   }
   // A run that went unstable may have left non-finite numbers behind: the
   // figures report zero for those (the outcome says the run is not usable).
-  for (double* x :
-       {&r.rebound_velocity, &r.coefficient_of_restitution, &r.bonded_area, &r.contact_area,
-        &r.bonded_fraction, &r.initial_kinetic, &r.final_particle_kinetic, &r.adhesion_dissipated,
-        &r.max_temperature, &r.max_plastic_strain, &r.flattening_ratio, &r.penetration_depth,
-        &r.bond_energy, &r.separating_kinetic, &r.guard.max_interpenetration,
-        &r.guard.interpenetration_ratio, &r.guard.eroded_energy_fraction,
-        &r.guard.internal_energy_fraction}) {
+  for (double* x : {&r.rebound_velocity,
+                    &r.coefficient_of_restitution,
+                    &r.bonded_area,
+                    &r.contact_area,
+                    &r.bonded_fraction,
+                    &r.initial_kinetic,
+                    &r.final_particle_kinetic,
+                    &r.adhesion_dissipated,
+                    &r.max_temperature,
+                    &r.max_plastic_strain,
+                    &r.flattening_ratio,
+                    &r.penetration_depth,
+                    &r.bond_energy,
+                    &r.separating_kinetic,
+                    &r.cohesive_zone_length,
+                    &r.interface_element_size,
+                    &r.cohesive_zone_elements,
+                    &r.guard.max_interpenetration,
+                    &r.guard.interpenetration_ratio,
+                    &r.guard.eroded_energy_fraction,
+                    &r.guard.internal_energy_fraction}) {
     *x = finite_or_zero(*x);
   }
   s.impact = r;

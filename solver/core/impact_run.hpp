@@ -69,6 +69,9 @@ class ImpactRun {
 
  private:
   ImpactSample sample(double time, const Model& model) const;
+  // The process zone of the interface law against the particle's surface
+  // element size (ImpactSummary::cohesive_zone_*).
+  void cohesive_zone(const Model& model, ImpactSummary& r) const;
   // Mean height of the particle nodes with active links, m.
   double bonded_height(const Model& model) const;
 

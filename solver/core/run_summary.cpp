@@ -144,6 +144,9 @@ nlohmann::json to_json(const RunSummary& s) {
     j["max_time"] = r.max_time;
     j["end_time_rule"] = r.adaptive ? "adaptive" : "fixed";
     j["model"] = {{"name", r.model}, {"why", r.why}};
+    j["cohesive_zone"] = {{"length", r.cohesive_zone_length},
+                          {"element_size", r.interface_element_size},
+                          {"elements", r.cohesive_zone_elements}};
     j["bond_energy"] = r.bond_energy;
     j["separating_kinetic_energy"] = r.separating_kinetic;
     const GuardFigures& g = r.guard;

@@ -144,8 +144,14 @@ struct ImpactSummary {
   std::string model;  // fe-axisym, fe-3d-quarter, fe-3d-full
   std::string why;
   GuardFigures guard;
-  double bond_energy = 0.0;         // J, budget the active links have left at the end
-  double separating_kinetic = 0.0;  // J, K_sep at the end (impact_verdict.hpp)
+  // Adhesion: the interface law's process zone (cohesive_law.hpp) against the
+  // size of the particle's surface elements (SPH: the spacing) where it
+  // touched; 0 without a stress cap (no zone) or without adhesion.
+  double cohesive_zone_length = 0.0;    // m
+  double interface_element_size = 0.0;  // m
+  double cohesive_zone_elements = 0.0;  // -, cohesive_zone_length / interface_element_size
+  double bond_energy = 0.0;             // J, budget the active links have left at the end
+  double separating_kinetic = 0.0;      // J, K_sep at the end (impact_verdict.hpp)
 };
 
 struct RunSummary {

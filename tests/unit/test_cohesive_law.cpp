@@ -358,3 +358,29 @@ TEST(cohesive_law, capped_work_is_the_exact_discrete_work) {
 
 }  // namespace
 }  // namespace splat
+
+namespace splat {
+namespace {
+
+// Dugdale-Barenblatt process zone, l = (pi/8) E' G_c / sigma_c^2 (Rice 1968):
+// aluminium on aluminium (E 70 GPa, nu 0.3: E' = 76.92 GPa), G_c 30 J/m^2,
+// sigma_c 100 MPa: l = 0.3927 x 76.92e9 x 30 / 1e16 = 90.6 um, larger than a
+// 12.5 um particle (the whole bond is in its process zone). Copper on
+// aluminium (E 124 GPa, nu 0.34) takes the harmonic mean of the two plane-strain
+// moduli, either way round; without a cap there is no zone.
+TEST(cohesive_law, cohesive_zone_length_of_the_dugdale_law) {
+  AdhesionParams p;
+  p.G_c = 30.0;
+  p.sigma_c = 100e6;
+  EXPECT_NEAR(cohesive_zone_length(p, 70e9, 0.3, 70e9, 0.3), 9.062e-5, 0.001e-5);
+  const double E_al = 70e9 / (1.0 - 0.09), E_cu = 124e9 / (1.0 - 0.34 * 0.34);
+  const double mixed = 0.125 * 3.141592653589793 * (2.0 / (1.0 / E_al + 1.0 / E_cu)) * 30.0 / 1e16;
+  EXPECT_NEAR(cohesive_zone_length(p, 70e9, 0.3, 124e9, 0.34), mixed, 1e-12 * mixed);
+  EXPECT_DOUBLE_EQ(cohesive_zone_length(p, 124e9, 0.34, 70e9, 0.3),
+                   cohesive_zone_length(p, 70e9, 0.3, 124e9, 0.34));
+  p.sigma_c.reset();
+  EXPECT_EQ(cohesive_zone_length(p, 70e9, 0.3, 70e9, 0.3), 0.0);
+}
+
+}  // namespace
+}  // namespace splat
