@@ -91,19 +91,29 @@ double triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
 // Uniform grid of element bounding boxes.
 class ElementGrid {
  public:
+  // Boxes spanning more than k_max_span cells along an axis (an element
+  // stretched far beyond the mean) are kept apart and tested for every point.
+  static constexpr long long k_max_span = 8;
+
   ElementGrid(const std::vector<Box>& boxes, const std::vector<int>& ids, double cell)
       : cell_(cell) {
     for (std::size_t k = 0; k < ids.size(); ++k) {
       const auto lo = key3(boxes[k].lo), hi = key3(boxes[k].hi);
+      if (hi[0] - lo[0] > k_max_span || hi[1] - lo[1] > k_max_span || hi[2] - lo[2] > k_max_span) {
+        large_.push_back(ids[k]);
+        continue;
+      }
       for (long long i = lo[0]; i <= hi[0]; ++i)
         for (long long j = lo[1]; j <= hi[1]; ++j)
           for (long long l = lo[2]; l <= hi[2]; ++l) cells_[hash(i, j, l)].push_back(ids[k]);
     }
   }
-  const std::vector<int>* at(const Vec3& p) const {
+  // The elements whose box may hold p: its cell's and the large ones.
+  void candidates(const Vec3& p, std::vector<int>& out) const {
+    out = large_;
     const auto k = key3(p);
     const auto it = cells_.find(hash(k[0], k[1], k[2]));
-    return it == cells_.end() ? nullptr : &it->second;
+    if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
   }
 
  private:
@@ -117,6 +127,7 @@ class ElementGrid {
   }
   double cell_;
   std::unordered_map<long long, std::vector<int>> cells_;
+  std::vector<int> large_;
 };
 
 bool node_live(const Model& model, std::size_t i) {
@@ -161,8 +172,9 @@ Interpenetration measure_interpenetration(const Model& model, const GuardInput& 
   const std::vector<Vec3>& x = model.nodes.x;
   Box particle_box;
   for (std::size_t i = p_begin; i < p_end; ++i) {
-    if (node_live(model, i)) particle_box.add(x[i]);
+    if (node_live(model, i) && x[i].allFinite()) particle_box.add(x[i]);
   }
+  if (!particle_box.lo.allFinite() || !particle_box.hi.allFinite()) return out;
   // Live substrate elements that overlap the particle's box.
   const int npe = sub.nodes_per_element();
   std::vector<Box> boxes;
@@ -172,6 +184,7 @@ Interpenetration measure_interpenetration(const Model& model, const GuardInput& 
     if (!sub.active[e]) continue;
     Box b;
     for (int a = 0; a < npe; ++a) b.add(x[sub.conn[e][a]]);
+    if (!b.lo.allFinite() || !b.hi.allFinite()) continue;
     if ((b.hi.array() < particle_box.lo.array()).any() ||
         (b.lo.array() > particle_box.hi.array()).any())
       continue;
@@ -179,15 +192,16 @@ Interpenetration measure_interpenetration(const Model& model, const GuardInput& 
     ids.push_back(static_cast<int>(e));
     size_sum += (b.hi - b.lo).maxCoeff();
   }
-  if (ids.empty()) return out;
-  const ElementGrid grid(boxes, ids, size_sum / static_cast<double>(ids.size()));
+  const double cell = ids.empty() ? 0.0 : size_sum / static_cast<double>(ids.size());
+  if (!(cell > 0.0) || !std::isfinite(cell)) return out;
+  const ElementGrid grid(boxes, ids, cell);
   std::vector<Box> box_of(sub.num_elements());
   for (std::size_t k = 0; k < ids.size(); ++k) box_of[ids[k]] = boxes[k];
+  std::vector<int> candidates;
   for (std::size_t i = p_begin; i < p_end; ++i) {
-    if (!node_live(model, i)) continue;
-    const std::vector<int>* candidates = grid.at(x[i]);
-    if (!candidates) continue;
-    for (int e : *candidates) {
+    if (!node_live(model, i) || !x[i].allFinite()) continue;
+    grid.candidates(x[i], candidates);
+    for (int e : candidates) {
       if (!box_of[e].contains(x[i])) continue;
       bool inside = false;
       if (sub.kind == ElementKind::quad4_axisym) {

@@ -87,8 +87,8 @@ struct Cell {
 
 // Runs one scene and checks the invariants of the header; returns its cell.
 Cell run_and_check(const json& scene, double v, bool adhesion) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("splat_extremes_" + std::to_string(getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("splat_extremes_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto file = dir / "scene.json";
   json doc = scene;
@@ -128,6 +128,14 @@ Cell run_and_check(const json& scene, double v, bool adhesion) {
   return c;
 }
 
+// Prints a rung's table and leaves it in build/test-artifacts/extremes_NAME.md.
+void publish(const std::string& name, const std::string& table) {
+  std::printf("%s\n", table.c_str());
+  const auto dir = std::filesystem::path(SPLAT_BUILD_DIR) / "test-artifacts";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / ("extremes_" + name + ".md")) << table;
+}
+
 void run_rung(const Rung& rung) {
   std::string table = "### " + rung.fidelity + "\n\n| pair | adhesion | across |";
   for (double v : k_speeds) table += " " + std::to_string(static_cast<int>(v)) + " |";
@@ -156,10 +164,7 @@ void run_rung(const Rung& rung) {
   table += "\n";
   for (const auto& [k, n] : counts) table += k + ": " + std::to_string(n) + "  ";
   table += "\n";
-  std::printf("%s\n", table.c_str());
-  const auto dir = std::filesystem::path(SPLAT_BUILD_DIR) / "test-artifacts";
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / ("extremes_" + rung.fidelity + ".md")) << table;
+  publish(rung.fidelity, table);
 }
 
 TEST(extremes_matrix, fe_axisym) {
@@ -205,10 +210,7 @@ TEST(extremes_matrix, oblique) {
       }
     }
   }
-  std::printf("%s\n", table.c_str());
-  const auto dir = std::filesystem::path(SPLAT_BUILD_DIR) / "test-artifacts";
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "extremes_oblique.md") << table;
+  publish("oblique", table);
 }
 
 }  // namespace
