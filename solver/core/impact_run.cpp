@@ -65,7 +65,7 @@ BodyMotion motion(const Model& model, int b) {
   if (b < 0) return out;
   const NodeRange body = nodes_of(model, b);
   const NodeSet& n = model.nodes;
-  // (mass, momentum, kinetic energy) over fixed blocks: the same bits for
+  // (mass, momentum, kinetic energy, mass x height) over fixed blocks: the same bits for
   // any thread count.
   using Sums = Eigen::Matrix<double, 6, 1>;
   constexpr std::size_t block = 1024, min_parallel = 4096;
