@@ -2,15 +2,16 @@
 // central differences and ends every run with an outcome and a reason.
 //
 // Stages of one step (README "Time step"):
-//   1. update       a_n = f_n / m; v_{n+1/2} = v_{n-1/2} + dt_n a_n; velocity
-//                   constraints (fixed, symmetry, axis, prescribed); rigid walls
+//   1. update       a_n = f_n / m; v_{n+1/2} = v_{n-1/2} + dt_n a_n (absorbing
+//                   dashpots at the mid-point); velocity constraints (fixed,
+//                   symmetry, axis, prescribed); rigid walls
 //   2. predict      x_{n+1} = x_n + dt_{n+1/2} v_{n+1/2}
 //   3. contact      Lagrange-multiplier contact on the predicted positions:
 //                   v_{n+1/2} and x_{n+1} corrected so x_{n+1} does not penetrate
 //   4. internal     element loop: velocity gradient, material update, bulk
 //      forces       viscosity, hourglass control, nodal forces, CFL bound
-//   5. boundary     penalty contact forces, absorbing-boundary forces
-//      forces
+//   5. boundary     penalty contact forces; dashpot matrices of the absorbing
+//      forces       faces at x_{n+1}
 //   6. diagnostics  energies, histories, snapshots, stop checks; next dt
 #pragma once
 
