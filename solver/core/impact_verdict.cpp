@@ -67,9 +67,15 @@ std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
     stick_since_ = holding ? s.time : -1.0;
     stick_links_ = s.links_active;
     stick_area_ = s.bonded_area;
+    stick_stopped_ = false;
   }
+  // A held particle stops receding within the window (it rings about its
+  // bonded position); one still receding is loading a bond that may yet
+  // break.
+  if (holding && s.v_normal <= 0.0) stick_stopped_ = true;
   const bool calm = s.kinetic_rel <= settings_.settle_fraction * kinetic_0_;
-  if (holding && stick_since_ >= 0.0 && calm && s.time - stick_since_ >= settings_.hold_time) {
+  if (holding && stick_since_ >= 0.0 && calm && stick_stopped_ &&
+      s.time - stick_since_ >= settings_.hold_time) {
     return VerdictDecision{
         ImpactVerdict::stick, true,
         format("stick: active links steady since t = %.4g s, the relative kinetic energy down "

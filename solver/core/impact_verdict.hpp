@@ -24,8 +24,9 @@
 //   rebound  no active link, no pair carrying a force, and v_n > 0, all held
 //            for `hold_time`: nothing can pull the particle back;
 //   stick    held, no link lost, bonded area steady (within 1 %) for
-//            `hold_time`, and K_rel <= settle_fraction K_0: the particle is
-//            held and its motion has died down.
+//            `hold_time`, the particle stopped receding (v_n <= 0) at least
+//            once in that window, and K_rel <= settle_fraction K_0: the
+//            particle is held and its motion has died down.
 // At the maximum time without a settled verdict: undecided while the particle
 // still moves into the substrate with more than settle_fraction K_0 (the
 // impact is not over); else stick if held, rebound if no link is active and
@@ -97,8 +98,9 @@ class ImpactMonitor {
   double stick_since_ = -1.0;
   long long stick_links_ = 0;
   double stick_area_ = 0.0;
-  double min_offset_ = 0.0;  // smallest d since the links formed, m
-  bool linked_ = false;      // links were active at the last sample
+  bool stick_stopped_ = false;  // v_n <= 0 at a sample of the current stick window
+  double min_offset_ = 0.0;     // smallest d since the links formed, m
+  bool linked_ = false;         // links were active at the last sample
 };
 
 }  // namespace splat
