@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <numbers>
 
 namespace splat {
@@ -25,6 +26,8 @@ ContactInterface::ContactInterface(std::string master_body, std::string slave_bo
       link_area_(slave_.nodes.size(), 0.0),
       link_rate_(slave_.nodes.size(), 0.0),
       link_face_(slave_.nodes.size(), -1),
+      link_damage_(slave_.nodes.size(), 0.0),
+      link_flow_(slave_.nodes.size(), 1e30),
       link_touching_(slave_.nodes.size(), 0) {}
 
 namespace {
@@ -32,6 +35,11 @@ namespace {
 // Existing penetration pushed out per step (positions only), fraction of the
 // face size, -: a larger step distorts the elements behind the face.
 constexpr double k_pushout_fraction = 0.02;
+
+// sigma_y_static / sigma_y_static_peak of one point (1 before it yields).
+double yield_ratio(const PointState& st) {
+  return st.sigma_y_static_peak > 0.0 ? st.sigma_y_static / st.sigma_y_static_peak : 1.0;
+}
 
 // Elements of `body` that contain global node g (ascending).
 std::vector<int> elements_of_node(const FeBody& body, int g) {
@@ -191,7 +199,7 @@ void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const N
   const std::size_t n = slave.nodes.size();
   std::vector<std::uint8_t> touched(n, 0), touching(n, 0), pressed(n, 0);
   std::vector<LinkState> state(n, LinkState::none);
-  std::vector<double> work(n, 0.0), area(n, 0.0), rate(n, 0.0);
+  std::vector<double> work(n, 0.0), area(n, 0.0), rate(n, 0.0), damage(n, 0.0), flow(n, 1e30);
   std::vector<int> face(n, -1);
   for (std::size_t k = 0; k < n; ++k) {
     const auto it = std::lower_bound(slave_.nodes.begin(), slave_.nodes.end(), slave.nodes[k]);
@@ -205,6 +213,8 @@ void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const N
     area[k] = link_area_[o];
     rate[k] = link_rate_[o];
     face[k] = link_face_[o];
+    damage[k] = link_damage_[o];
+    flow[k] = link_flow_[o];
   }
   // Links on nodes that left the surface (all their elements eroded) are
   // counted as eroded links.
@@ -223,6 +233,8 @@ void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const N
   link_area_ = std::move(area);
   link_rate_ = std::move(rate);
   link_face_ = std::move(face);
+  link_damage_ = std::move(damage);
+  link_flow_ = std::move(flow);
   slave_elem_offsets_.assign(1, 0);
   slave_elem_entries_.clear();
   for (int g : slave_.nodes) {
@@ -353,35 +365,38 @@ double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x)
   return std::min(own, quad_area({x[ids[0]], x[ids[1]], x[ids[2]], x[ids[3]]}));
 }
 
-// The side's element whose static yield stress has fallen furthest below its
-// peak stands for the side (a node belongs to several elements); damage is
-// the largest of them. Eroded elements are skipped.
-SideYield ContactInterface::slave_side_yield(const FeBody& slave, int k, double& damage) const {
-  SideYield out{1.0, 1.0};
-  double worst = 2.0;
-  damage = 0.0;
+// The interface state of slave node k's side: the yield ratio and damage of
+// its live elements, weighted by their volume (a node-level sample of the
+// fields that average_interface then averages over the interface length).
+InterfaceSideState ContactInterface::slave_side_state(const FeBody& slave, int k) const {
+  double w_sum = 0.0, ratio = 0.0, damage = 0.0, flow = 0.0;
   for (int j = slave_elem_offsets_[k]; j < slave_elem_offsets_[k + 1]; ++j) {
     const int e = slave_elem_entries_[j];
     if (!slave.active[e]) continue;
+    const double w = slave.volume[e];
+    if (!(w > 0.0)) continue;
     const PointState& st = slave.state[e];
-    damage = std::max(damage, st.D);
-    const double ratio =
-        st.sigma_y_static_peak > 0.0 ? st.sigma_y_static / st.sigma_y_static_peak : 1.0;
-    if (ratio < worst) {
-      worst = ratio;
-      out = {st.sigma_y_static, st.sigma_y_static_peak};
-    }
+    ratio += w * yield_ratio(st);
+    damage += w * st.D;
+    flow += w * st.sigma_y_static;
+    w_sum += w;
   }
-  return out;
+  if (!(w_sum > 0.0)) return {};
+  return {ratio / w_sum, damage / w_sum, flow / w_sum};
 }
 
-SideYield ContactInterface::master_side_yield(const FeBody& master, int f, double& damage) const {
-  damage = 0.0;
+InterfaceSideState ContactInterface::master_side_state(const FeBody& master, int f) const {
   const int e = f >= 0 ? master_face_element_[f] : -1;
-  if (e < 0 || !master.active[e]) return {1.0, 1.0};  // never drops
+  if (e < 0 || !master.active[e]) return {};  // never drops
   const PointState& st = master.state[e];
-  damage = st.D;
-  return {st.sigma_y_static, st.sigma_y_static_peak};
+  return {yield_ratio(st), st.D, st.sigma_y_static};
+}
+
+AdhesionParams ContactInterface::link_params(int k) const {
+  AdhesionParams p = *settings_.adhesion;
+  p.sigma_c = link_strength(p, link_flow_[k]);
+  p.cap_at_flow_stress = false;
+  return p;
 }
 
 double ContactInterface::link_compliance(int k, int f, const std::vector<FeBody>& bodies,
@@ -425,50 +440,71 @@ double ContactInterface::link_compliance(int k, int f, const std::vector<FeBody>
   return c;
 }
 
-void ContactInterface::update_links_before_solve(const NodeSet& nodes,
-                                                 const std::vector<FeBody>& bodies,
-                                                 const std::vector<SphBody>& sph) {
-  const AdhesionParams& ap = *settings_.adhesion;
-  // An SPH side's state is the particle's own (yield, peak, damage).
-  auto particle_side = [&](std::size_t body, int g, double& damage) {
+std::vector<InterfaceSample> ContactInterface::interface_samples(
+    const NodeSet& nodes, const std::vector<int>& ids, const std::vector<FeBody>& bodies,
+    const std::vector<SphBody>& sph) const {
+  // An SPH side's state is the particle's own.
+  auto particle_side = [&](std::size_t body, int g) {
     const SphBody& b = sph[body];
     const std::size_t i = static_cast<std::size_t>(g) - b.node_begin;
-    damage = 0.0;
-    if (!b.active[i]) return SideYield{1.0, 1.0};
-    const PointState& st = b.state[i];
-    damage = st.D;
-    return SideYield{st.sigma_y_static, st.sigma_y_static_peak};
+    if (!b.active[i]) return InterfaceSideState{};
+    return InterfaceSideState{yield_ratio(b.state[i]), b.state[i].D, b.state[i].sigma_y_static};
   };
-  for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
-    const LinkState before = link_state_[k];
-    if (before == LinkState::exhausted || before == LinkState::eroded) continue;
-    if (before == LinkState::none && !link_touching_[k]) continue;
-    double d_slave = 0.0, d_master = 0.0;
+  std::vector<InterfaceSample> samples(ids.size());
+  for (std::size_t n = 0; n < ids.size(); ++n) {
+    const int k = ids[n];
+    InterfaceSample& s = samples[n];
+    s.x = nodes.x[slave_.nodes[k]];
+    s.area = slave_node_area(slave_, k, nodes.x);
     // Sides whose bodies were not attached (unit tests of the detection
     // alone) never drop and carry no damage.
-    SideYield ys{1.0, 1.0}, ym{1.0, 1.0};
     if (slave_sph_) {
-      if (slave_index_ < sph.size()) ys = particle_side(slave_index_, slave_.nodes[k], d_slave);
+      if (slave_index_ < sph.size()) s.slave = particle_side(slave_index_, slave_.nodes[k]);
     } else if (slave_index_ < bodies.size() && !slave_elem_offsets_.empty()) {
-      ys = slave_side_yield(bodies[slave_index_], static_cast<int>(k), d_slave);
+      s.slave = slave_side_state(bodies[slave_index_], k);
     }
     if (master_sph_) {
       if (master_index_ < sph.size() && link_face_[k] >= 0) {
-        ym = particle_side(master_index_, master_.faces[link_face_[k]][0], d_master);
+        s.master = particle_side(master_index_, master_.faces[link_face_[k]][0]);
       }
     } else if (master_index_ < bodies.size() && !master_face_element_.empty()) {
-      ym = master_side_yield(bodies[master_index_], link_face_[k], d_master);
+      s.master = master_side_state(bodies[master_index_], link_face_[k]);
     }
+  }
+  return samples;
+}
+
+void ContactInterface::update_links_before_solve(const NodeSet& nodes,
+                                                 const std::vector<DetectedPair>& pairs,
+                                                 const std::vector<FeBody>& bodies,
+                                                 const std::vector<SphBody>& sph) {
+  const AdhesionParams& ap = *settings_.adhesion;
+  // The interface: slave nodes in a primary pair that touch or have touched.
+  std::vector<int> ids;
+  for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+    const int k = pairs[i].slave;
+    if (!pairs[i].primary) continue;
+    if (link_state_[k] == LinkState::none && !link_touching_[k]) continue;
+    ids.push_back(k);
+  }
+  const std::vector<InterfaceAverage> avg =
+      average_interface(interface_samples(nodes, ids, bodies, sph), ap.averaging_length);
+  for (std::size_t n = 0; n < ids.size(); ++n) {
+    const int k = ids[n];
+    link_damage_[k] = std::max(avg[n].slave.damage, avg[n].master.damage);
+    link_flow_[k] = std::min(avg[n].slave.flow_stress, avg[n].master.flow_stress);
+    const LinkState before = link_state_[k];
     LinkEvents ev;
     ev.touching = link_touching_[k] != 0;
-    ev.activation_met = activation_met(ap, ys, ym);
-    ev.erosion_met = erosion_met(ap, d_slave, d_master);
+    ev.activation_met =
+        activation_met(ap, {avg[n].slave.yield_ratio, 1.0}, {avg[n].master.yield_ratio, 1.0});
+    ev.erosion_met = erosion_met(ap, avg[n].slave.damage, avg[n].master.damage);
     const LinkState after = next_link_state(before, ap.activation, ev);
     if (after == before) continue;
     link_state_[k] = after;
     if (after == LinkState::active) {
       ++stats_.links_activated;
-      link_area_[k] = adhesive_area(static_cast<int>(k), link_face_[k], nodes.x);
+      link_area_[k] = adhesive_area(k, link_face_[k], nodes.x);
     }
     if (after == LinkState::eroded) ++stats_.links_eroded;
   }
@@ -492,7 +528,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
     for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
       if (pairs[i].primary) link_face_[pairs[i].slave] = pairs[i].face;
     }
-    update_links_before_solve(nodes, bodies, sph);
+    update_links_before_solve(nodes, pairs, bodies, sph);
     std::fill(link_touching_.begin(), link_touching_.end(), 0);
   }
   if (!pairs.empty()) {
@@ -504,13 +540,12 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
     // pair has at the start of the step, g_n = g_{n+1} - dt C v_{n+1/2}.
     std::vector<std::size_t> links;
     if (adhesive) {
-      const AdhesionParams& ap = *settings_.adhesion;
       for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
         const int k = pairs[i].slave;
         if (!pairs[i].primary || link_state_[k] != LinkState::active) continue;
         const double rate = normal_rate(problem_, i, problem_.velocity);
         const double g_n = pairs[i].geometry.gap - dt * rate;
-        problem_.lo[i] = -max_tension(ap, link_area_[k]) * dt;
+        problem_.lo[i] = -max_tension(link_params(k), link_area_[k]) * dt;
         problem_.b_hold[i] = problem_.b[i] + std::max(g_n, 0.0) / dt;
         links.push_back(i);
       }
@@ -532,7 +567,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       const double g_free = normal_rate(problem_, i, s.dv) + h * I - problem_.b_hold[i];
       const LinkKinematics kin{link_rate_[k], g_free, h,
                                link_compliance(k, pairs[i].face, bodies, sph)};
-      return cohesive_step(*settings_.adhesion, link_area_[k], link_work_[k], kin, dt, I);
+      return cohesive_step(link_params(k), link_area_[k], link_work_[k], kin, dt, I);
     };
     if (!links.empty()) {
       bool resolve = false;
@@ -656,13 +691,24 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
     }
     stats_.links_active = 0;
     double area = 0.0, remaining = 0.0;
+    stats_.bond_damage = 0.0;
+    double strength_area = 0.0, force_cap = 0.0;
     for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
       if (link_state_[k] != LinkState::active) continue;
       ++stats_.links_active;
+      const std::optional<double> sc = link_params(static_cast<int>(k)).sigma_c;
+      strength_area += (sc ? *sc : 0.0) * link_area_[k];
+      force_cap += sc ? *sc * link_area_[k] : std::numeric_limits<double>::infinity();
+      if (settings_.adhesion->D_adh_max) {
+        stats_.bond_damage =
+            std::max(stats_.bond_damage, link_damage_[k] / *settings_.adhesion->D_adh_max);
+      }
       area += link_area_[k];
       remaining += std::max(work_budget(*settings_.adhesion, link_area_[k]) - link_work_[k], 0.0);
     }
     stats_.bonded_area = area * scale();
+    stats_.bond_strength = area > 0.0 ? strength_area / area : 0.0;
+    stats_.bond_force = force_cap * scale();
     stats_.bond_energy = remaining * scale();
     stats_.max_bonded_area = std::max(stats_.max_bonded_area, stats_.bonded_area);
     stats_.max_links_active = std::max(stats_.max_links_active, stats_.links_active);

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "solver/adhesion/cohesive_law.hpp"
+#include "solver/adhesion/interface_average.hpp"
 #include "solver/contact/contact_search.hpp"
 #include "solver/contact/contact_solver.hpp"
 #include "solver/contact/contact_types.hpp"
@@ -102,6 +103,15 @@ struct ContactStats {
   // Budget the active links have left, sum of G_c A - W over them (J): the
   // energy the bond can still take out of a separating particle.
   double bond_energy = 0.0;
+  // Largest interface-averaged damage (either side) over the active links
+  // over D_adh_max, -: a link erodes when it reaches 1; 0 without D_adh_max.
+  double bond_damage = 0.0;
+  // Area-weighted mean tensile strength of the active links, Pa (0 when
+  // they are uncapped or none is active).
+  double bond_strength = 0.0;
+  // Largest total tension the active links can carry, sum of strength times
+  // area, N (+infinity when one is uncapped; 0 without links).
+  double bond_force = 0.0;
   long long links_in_tension = 0;  // links that carried tension in the last step
   // Largest node displacement of the position-only push-out in one step, m.
   double max_position_correction = 0.0;
@@ -184,13 +194,23 @@ class ContactInterface {
   double soft_penalty_stiffness(std::size_t i, const Vec3& normal, double dt) const;
   // Link state changes before the solve (activation, erosion, first touch)
   // from the material state of both sides; sets the areas of new links.
-  void update_links_before_solve(const NodeSet& nodes, const std::vector<FeBody>& bodies,
+  // The interface is averaged over AdhesionParams::averaging_length
+  // (interface_average.hpp).
+  void update_links_before_solve(const NodeSet& nodes, const std::vector<DetectedPair>& pairs,
+                                 const std::vector<FeBody>& bodies,
                                  const std::vector<SphBody>& sph);
+  // The raw state of both sides at each slave node of `ids`.
+  std::vector<InterfaceSample> interface_samples(const NodeSet& nodes, const std::vector<int>& ids,
+                                                 const std::vector<FeBody>& bodies,
+                                                 const std::vector<SphBody>& sph) const;
+  // The adhesion law of slave node k's link: the scene's, with the link's
+  // strength (link_strength) as its fixed cap.
+  AdhesionParams link_params(int k) const;
   // Adhesive area of slave node k over master face f, m^2 (per radian in 2D).
   double adhesive_area(int k, int f, const std::vector<Vec3>& x) const;
-  // The yield stresses and damage of each side of slave node k's link.
-  SideYield slave_side_yield(const FeBody& slave, int k, double& damage) const;
-  SideYield master_side_yield(const FeBody& master, int f, double& damage) const;
+  // The yield ratio and damage of each side of slave node k's link.
+  InterfaceSideState slave_side_state(const FeBody& slave, int k) const;
+  InterfaceSideState master_side_state(const FeBody& master, int f) const;
   // Compliance along the normal of slave node k's link over master face f,
   // both sides in series: sum of h_e / (M A) (cohesive_law.hpp), m/N (per
   // radian in 2D, like the areas and forces).
@@ -226,6 +246,10 @@ class ContactInterface {
   std::vector<double> link_work_, link_area_;
   std::vector<double> link_rate_;  // normal opening rate at the end of the last step, m/s
   std::vector<int> link_face_;
+  // Interface-averaged state at the last update: damage of the more damaged
+  // side (-) and flow stress of the weaker side (Pa).
+  std::vector<double> link_damage_;
+  std::vector<double> link_flow_;
   std::vector<std::uint8_t> link_touching_;
   // Penalty forces of the last stage 5 and the velocities they will act on.
   std::vector<int> penalty_nodes_;

@@ -145,6 +145,8 @@ ImpactSample ImpactRun::sample(double time, const Model& model) const {
     s.pairs_in_contact = st.in_contact;
     s.bonded_area = links_hold_ ? st.bonded_area : 0.0;
     s.bond_energy = links_hold_ ? st.bond_energy : 0.0;
+    s.bond_damage = links_hold_ ? st.bond_damage : 0.0;
+    s.bond_force = links_hold_ ? st.bond_force : 0.0;
     if (s.links_active > 0) s.bond_offset = p.height - bonded_height(model);
   } else if (particle_ >= 0) {
     const NodeRange body = nodes_of(model, particle_);
@@ -167,8 +169,16 @@ void ImpactRun::cohesive_zone(const Model& model, ImpactSummary& r) const {
     const BodyRef& s = model.body_refs[substrate_];
     ms = s.sph ? &model.sph_bodies[s.index].material : &model.bodies[s.index].material;
   }
-  r.cohesive_zone_length = cohesive_zone_length(*c.settings().adhesion, mp.elastic.E, mp.elastic.nu,
-                                                ms->elastic.E, ms->elastic.nu);
+  // A flow-stress cap: the mean strength of the links active at the end, or
+  // the weaker material's initial yield stress when none is.
+  AdhesionParams law = *c.settings().adhesion;
+  if (law.cap_at_flow_stress) {
+    const double initial = std::min(mp.strength.A, ms->strength.A);
+    const double now = c.stats().bond_strength;
+    law.sigma_c = link_strength(law, now > 0.0 ? now : initial);
+  }
+  r.cohesive_zone_length =
+      cohesive_zone_length(law, mp.elastic.E, mp.elastic.nu, ms->elastic.E, ms->elastic.nu);
   if (p.sph) {
     r.interface_element_size = model.sph_bodies[p.index].spacing;
   } else {

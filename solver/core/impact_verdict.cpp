@@ -33,14 +33,25 @@ bool ImpactMonitor::tearing(const ImpactSample& s) {
     linked_ = false;
     return false;
   }
-  if (!linked_ || s.bond_offset < min_offset_) min_offset_ = s.bond_offset;
+  // d is measured from the mean height of the active links: a change of
+  // that set moves it without any motion, so the watch restarts.
+  if (!linked_ || s.links_active != offset_links_ || s.bond_offset < min_offset_) {
+    min_offset_ = s.bond_offset;
+  }
+  offset_links_ = s.links_active;
   linked_ = true;
   return s.bond_offset - min_offset_ > k_tear_fraction * settings_.radius;
 }
 
+bool ImpactMonitor::too_weak_to_stop(const ImpactSample& s) const {
+  // Uncapped links stop the particle within any opening.
+  return s.links_active > 0 && !std::isinf(s.bond_force) &&
+         s.kinetic_leaving > s.bond_force * k_tear_fraction * settings_.radius;
+}
+
 bool ImpactMonitor::held(const ImpactSample& s) {
   const bool torn = tearing(s);
-  return s.links_active > 0 && s.kinetic_leaving <= s.bond_energy && !torn;
+  return s.links_active > 0 && s.kinetic_leaving <= s.bond_energy && !too_weak_to_stop(s) && !torn;
 }
 
 std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
@@ -62,11 +73,13 @@ std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
 
   const bool holding = held(s);
   const bool steady = holding && s.links_active >= stick_links_ &&
-                      std::abs(s.bonded_area - stick_area_) <= k_area_steadiness * stick_area_;
+                      std::abs(s.bonded_area - stick_area_) <= k_area_steadiness * stick_area_ &&
+                      s.bond_damage - stick_damage_ <= k_damage_steadiness;
   if (!holding || !steady || stick_since_ < 0.0) {
     stick_since_ = holding ? s.time : -1.0;
     stick_links_ = s.links_active;
     stick_area_ = s.bonded_area;
+    stick_damage_ = s.bond_damage;
     stick_stopped_ = false;
   }
   // A held particle stops receding within the window (it rings about its
@@ -113,6 +126,13 @@ VerdictDecision ImpactMonitor::at_end(const ImpactSample& s) {
             format("rebound (not settled at the maximum time): no active link, particle moving "
                    "at %.4g m/s away from the substrate",
                    s.v_normal, 0.0)};
+  }
+  if (too_weak_to_stop(s) && s.v_normal > 0.0) {
+    return {ImpactVerdict::rebound, false,
+            format("rebound (not settled at the maximum time): the particle leaves at %.4g m/s; "
+                   "its active links carry %.3g N in all and would stop it only after %.3g m "
+                   "of opening",
+                   s.v_normal, s.bond_force, s.kinetic_leaving / s.bond_force)};
   }
   if (s.links_active > 0) {
     return {ImpactVerdict::undecided, false,

@@ -10,14 +10,20 @@
 //   K_sep    the part of K_rel that can load the bond: 1/2 M (max(v_n, 0)^2
 //            + v_t^2) (J); motion into the substrate does not pull on it
 //   E_bond   budget the active links have left, sum of G_c A - W (J)
+//   F_bond   the most tension the active links can carry together, sum of
+//            their strength times area (N)
 //   d        height of the particle's centre of mass above the mean height of
 //            its bonded nodes (m); it shrinks while the particle flattens and
 //            recovers only elastically once it is held
 //   K_0      K_rel at impact
 // A particle is held when links are active, K_sep <= E_bond (the bond can
 // take all the separating energy the particle still has, whatever the impact
-// speed) and it is not tearing off its bonded nodes: d has not grown by more
-// than k_tear_fraction R above its smallest value since the links formed
+// speed), K_sep <= F_bond k_tear_fraction R (pulling at most F_bond, the
+// bond stops the particle before it has opened k_tear_fraction R: weak links
+// with a large budget would only stop it far away) and it is not tearing off
+// its bonded nodes: d has not grown by more
+// than k_tear_fraction R above its smallest value since the number of active
+// links last changed
 // (elastic recovery is a fraction of a percent of R; a particle whose bulk
 // leaves while the bonded surface stays behind grows d without bound).
 // Decided and settled (checked at every history row):
@@ -29,8 +35,9 @@
 //            particle is held and its motion has died down.
 // At the maximum time without a settled verdict: undecided while the particle
 // still moves into the substrate with more than settle_fraction K_0 (the
-// impact is not over); else stick if held, rebound if no link is active and
-// the particle leaves (v_n > 0), otherwise undecided: at rest without a
+// impact is not over); else stick if held, rebound if the particle leaves
+// (v_n > 0) with no active link or with links too weak to stop it within
+// k_tear_fraction R of opening, otherwise undecided: at rest without a
 // bond, or links active while the particle carries more separating energy
 // than they can take or tears off them. The reason says the state was not
 // settled.
@@ -52,11 +59,17 @@ struct ImpactSample {
   double bonded_area = 0.0;        // m^2
   double bond_energy = 0.0;        // E_bond, J
   double bond_offset = 0.0;        // d, m (0 without links)
+  double bond_damage = 0.0;        // largest averaged damage of an active link over D_adh_max, -
+  double bond_force = 0.0;         // F_bond, N (+infinity when a link is uncapped)
 };
 
 // Growth of d above its smallest value since the links formed, over R, above
 // which the particle is tearing off its bond, -.
 inline constexpr double k_tear_fraction = 0.05;
+
+// Growth of the bond's damage (over D_adh_max) within the hold window above
+// which the bond is still being eaten away and a stick is not settled, -.
+inline constexpr double k_damage_steadiness = 0.02;
 
 struct VerdictSettings {
   double settle_fraction = 0.01;  // K_rel / K_0 below which a held particle is settled, -
@@ -88,6 +101,9 @@ class ImpactMonitor {
  private:
   // Follows d; true when the particle tears off its bond (above).
   bool tearing(const ImpactSample& s);
+  // Links active whose total strength would stop the particle only beyond
+  // k_tear_fraction R of opening.
+  bool too_weak_to_stop(const ImpactSample& s) const;
   // Links active, the separating energy within what they can take, not tearing.
   bool held(const ImpactSample& s);
 
@@ -98,8 +114,10 @@ class ImpactMonitor {
   double stick_since_ = -1.0;
   long long stick_links_ = 0;
   double stick_area_ = 0.0;
+  double stick_damage_ = 0.0;   // bond_damage at the start of the stick window
   bool stick_stopped_ = false;  // v_n <= 0 at a sample of the current stick window
-  double min_offset_ = 0.0;     // smallest d since the links formed, m
+  double min_offset_ = 0.0;     // smallest d since the set of active links last changed, m
+  long long offset_links_ = 0;  // active links when min_offset_ was last reset
   bool linked_ = false;         // links were active at the last sample
 };
 

@@ -9,10 +9,17 @@ using nlohmann::json;
 AdhesionParams adhesion_from_json(const json& j) {
   AdhesionParams p;
   p.G_c = j.at("G_c").get<double>();
-  if (const auto s = j.find("sigma_c"); s != j.end() && !s->is_null()) p.sigma_c = s->get<double>();
+  // sigma_c: a number (Pa), null (no cap) or "flow-stress", the default.
+  const auto s = j.find("sigma_c");
+  if (s == j.end() || (s->is_string() && s->get<std::string>() == "flow-stress")) {
+    p.cap_at_flow_stress = true;
+  } else if (s->is_number()) {
+    p.sigma_c = s->get<double>();
+  }
   if (const auto d = j.find("D_adh_max"); d != j.end() && !d->is_null()) {
     p.D_adh_max = d->get<double>();
   }
+  p.averaging_length = j.value("averaging_length", k_default_averaging_length);
   if (const auto a = j.find("activation"); a != j.end()) {
     const std::string rule = a->value("rule", std::string("none"));
     p.activation = rule == "yield-drop" ? ActivationRule::yield_drop : ActivationRule::none;
@@ -28,9 +35,12 @@ json adhesion_to_json(const AdhesionParams& p) {
                   {"drop_percent", p.yield_drop * 100.0},
                   {"sides", p.sides == ActivationSides::both ? "both" : "either"}};
   return {{"G_c", p.G_c},
-          {"sigma_c", p.sigma_c ? json(*p.sigma_c) : json(nullptr)},
+          {"sigma_c", p.cap_at_flow_stress ? json("flow-stress")
+                      : p.sigma_c          ? json(*p.sigma_c)
+                                           : json(nullptr)},
           {"activation", std::move(activation)},
-          {"D_adh_max", p.D_adh_max ? json(*p.D_adh_max) : json(nullptr)}};
+          {"D_adh_max", p.D_adh_max ? json(*p.D_adh_max) : json(nullptr)},
+          {"averaging_length", p.averaging_length}};
 }
 
 }  // namespace splat

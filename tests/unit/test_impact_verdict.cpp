@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "solver/core/impact_verdict.hpp"
 
@@ -39,6 +40,7 @@ ImpactSample sample(double t, Motion m, double kinetic, long long links, long lo
   s.pairs_in_contact = contact;
   s.bonded_area = area;
   s.bond_energy = bond_energy;
+  s.bond_force = std::numeric_limits<double>::infinity();  // uncapped links
   return s;
 }
 
@@ -193,6 +195,49 @@ TEST(ImpactVerdict, a_receding_particle_is_never_settled_as_stuck) {
   for (int k = 1; k < 100 && !settled; ++k) {
     const double v = 12.0 * std::cos(0.7 * k);
     settled = ringing.update(sample(1e-10 * k, {v}, 0.001, 1, 0, 1e-11, 1e-8)).has_value();
+  }
+  EXPECT_TRUE(settled);
+}
+
+// A particle leaving at 12 m/s (K_sep 7.2e-10 J) on links with a large
+// budget (1e-8 J) but a total strength of 1e-4 N: they would stop it only
+// after 7.2 um of opening, far beyond k_tear_fraction R (0.5 um here), so it
+// is not held; with 1 N they stop it within 0.7 nm and it is.
+TEST(ImpactVerdict, links_too_weak_to_stop_the_particle_do_not_hold_it) {
+  const auto ringing_run = [](double force) {
+    VerdictSettings st = settings();
+    st.radius = 10e-6;
+    ImpactMonitor m(st);
+    m.update(sample(0.0, {-400.0}, 1.0, 0, 0, 0.0));
+    bool stuck = false;
+    for (int k = 1; k < 100 && !stuck; ++k) {
+      ImpactSample s = sample(1e-10 * k, {12.0 * std::cos(0.7 * k)}, 0.001, 1, 0, 1e-11, 1e-8);
+      s.bond_force = force;
+      const auto d = m.update(s);
+      stuck = d && d->verdict == ImpactVerdict::stick;
+    }
+    return stuck;
+  };
+  EXPECT_FALSE(ringing_run(1e-4));
+  EXPECT_TRUE(ringing_run(1.0));
+}
+
+// Links whose damage keeps growing towards D_adh_max are being eaten away:
+// the stick does not settle while it grows, and settles once it stops.
+TEST(ImpactVerdict, a_bond_whose_damage_still_grows_is_not_settled) {
+  ImpactMonitor m(settings());
+  m.update(sample(0.0, {-400.0}, 1.0, 0, 0, 0.0));
+  int k = 1;
+  for (; k < 100; ++k) {
+    ImpactSample s = sample(1e-10 * k, {12.0 * std::cos(0.7 * k)}, 0.001, 1, 0, 1e-11, 1e-8);
+    s.bond_damage = 0.01 * k;  // 0.1 per ns: a hold window sees 0.1 or more
+    EXPECT_FALSE(m.update(s)) << "t = " << s.time;
+  }
+  bool settled = false;
+  for (; k < 200 && !settled; ++k) {
+    ImpactSample s = sample(1e-10 * k, {12.0 * std::cos(0.7 * k)}, 0.001, 1, 0, 1e-11, 1e-8);
+    s.bond_damage = 0.99;
+    settled = m.update(s).has_value();
   }
   EXPECT_TRUE(settled);
 }
