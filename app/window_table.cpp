@@ -17,11 +17,15 @@ std::string number(const json& x, const char* fmt = "%.6g") {
   return buf;
 }
 
-// "0.775 [0.77, 0.78]" for a closed edge, "open (below 0.5)" style otherwise.
+// "0.775 [0.77, 0.78]" for a closed edge; an open edge says how far the
+// sticks reach ("above 800": the last stick; samples beyond it unclassified
+// are listed in the last column), or the swept range's end without a stick.
 std::string edge_text(const json& edge, bool lower, const json& range) {
   if (edge.is_null()) return "-";
   if (edge.at("estimate").is_null()) {
-    return lower ? "below " + number(range.at(0)) : "above " + number(range.at(1));
+    const json& stick = edge.at("stick_velocity");
+    const json& bound = stick.is_number() ? stick : range.at(lower ? 0 : 1);
+    return (lower ? "below " : "above ") + number(bound);
   }
   const double a = edge.at("rebound_velocity").get<double>();
   const double b = edge.at("stick_velocity").get<double>();
