@@ -148,7 +148,7 @@ TEST(campaign_sweep, sweep_and_windows_commands) {
 // the axes default to the impact block's fields and the jobs are classified
 // by the same stick / rebound outcome as two-mass jobs, so the window has a
 // critical velocity (rebound at 200 m/s, stick at 500 m/s at 8 elements
-// across; README "Robustness").
+// across; docs/verification.md "FE impact robustness").
 TEST(campaign_sweep, impact_jobs_classify_like_two_mass_jobs) {
   TempDir t;
   const fs::path spec = t.path / "impact.json";

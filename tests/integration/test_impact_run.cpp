@@ -67,7 +67,7 @@ void expect_issue_keys(const json& s) {
 // At the schema's default resolution, 12 elements across: at the scene's 8
 // the 500 m/s stick does not settle before the maximum time since elements
 // at the damage cap erode (it ends "stick (not settled)", moving off at 7 m/s
-// with links active; README "Robustness").
+// with links active; docs/verification.md "FE impact robustness").
 TEST(impact_run, thesis_scene_at_500_m_s_sticks_with_a_complete_summary_and_hdf5_attributes) {
   const json s = run_impact("stick", "--set /particle_impact/particle/elements_across=12", 0);
   expect_issue_keys(s);

@@ -3,10 +3,11 @@
 // rod as total-Lagrangian SPH particles (quarter rod with mirrored-ghost
 // symmetry planes) at 4, 6 and 8 particle spacings across the radius, with
 // the final length and footprint radius of each and its cost, against the FE
-// reference of the README's refinement table (axisymmetric, 32 elements
+// reference of the Taylor refinement study (axisymmetric, 32 elements
 // across: 21.467 mm, 7.354 mm). The thesis (2.1.3) found its SPH a few
 // percent softer than FE; ours is a few percent stiffer, converging towards
-// FE as the spacing shrinks (table in the README). Particle centres lie inside the body, so the
+// FE as the spacing shrinks (docs/verification.md "SPH"). Particle centres lie
+// inside the body, so the
 // extent of the rod is that of the centres plus half a spacing on each free
 // side (the wall stops the centres at z = 0, so only the top and the rim
 // get the half spacing).
@@ -26,7 +27,7 @@
 namespace splat {
 namespace {
 
-constexpr double fe_length = 21.467e-3;    // m, README, axisymmetric FE 32 across
+constexpr double fe_length = 21.467e-3;    // m, taylor_anvil_refinement, axisymmetric FE 32 across
 constexpr double fe_footprint = 7.354e-3;  // m
 
 struct Row {
@@ -71,7 +72,7 @@ TEST(SphTaylor, sph_taylor_against_fe) {
                 100.0 * (r.length / fe_length - 1.0), r.footprint * 1e3,
                 100.0 * (r.footprint / fe_footprint - 1.0), r.balance, r.cpu_seconds);
   }
-  // Measured (README): SPH is stiffer than FE here (longer rod, smaller
+  // Measured (docs/verification.md): SPH is stiffer than FE here (longer rod, smaller
   // footprint; the thesis found its SPH softer), and the gap to FE closes as
   // the spacing shrinks. Asserted: both gaps shrink with each refinement, the
   // finest length is within 5 % of FE, and its energy balance within 2 %
