@@ -2,7 +2,7 @@
 // body: detection (contact_search.hpp), pair geometry (contact_geometry.hpp)
 // and the forces, by Lagrange multipliers (contact_solver.hpp) or by penalty.
 //
-// Where it acts in the time step (README "Time step"):
+// Where it acts in the time step (docs/design.md "Stages of a time step"):
 //   Lagrange  stage 3, after predict: pairs are found on the predicted
 //             positions x_{n+1}; the impulses p make x_{n+1} free of
 //             penetration; v_{n+1/2} += dv and x_{n+1} += dt dv. A pair

@@ -1,7 +1,7 @@
 // The explicit time loop: builds bodies from a Scene, advances them by
 // central differences and ends every run with an outcome and a reason.
 //
-// Stages of one step (README "Time step"):
+// Stages of one step (docs/design.md "Stages of a time step"):
 //   1. update       a_n = f_n / m; v_{n+1/2} = v_{n-1/2} + dt_n a_n (absorbing
 //                   dashpots at the mid-point); velocity constraints (fixed,
 //                   symmetry, axis, prescribed); rigid walls

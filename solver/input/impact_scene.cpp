@@ -22,7 +22,7 @@ constexpr double k_size_velocity = 250.0;        // m/s per extra particle radiu
 constexpr double k_rigid_factor = 3.0;           // substrate yield / particle flow stress for rigid
 constexpr double k_hourglass_coefficient = 0.1;  // stiffness-form hourglass coefficient, -
 constexpr double k_erosion_dt_fraction = 0.05;   // default geometric erosion, of h / c_p, -
-// Fastest impact `auto` models with an FE particle. README "Robustness"
+// Fastest impact `auto` models with an FE particle. docs/verification.md "FE impact robustness"
 // table (Al/Al at 8, 12 and 16 elements across): verdicts up to 800 m/s, but
 // from 600 m/s on they rest on element erosion (the jetting rim reaches the
 // damage cap and is removed, links with it) and from 1000-1500 m/s the runs
@@ -155,7 +155,7 @@ ExpandedImpact expand_particle_impact(const json& doc) {
                                   : "SPH particle: impact velocity " + std::to_string(v) +
                                         " m/s is above " + std::to_string(k_fe_max_velocity) +
                                         " m/s, above which the FE particle's jetting rim "
-                                        "erodes (README robustness table)");
+                                        "erodes (docs/verification.md, FE impact robustness)");
       reasons.push_back(sph_substrate
                             ? (substrate_disc == "sph"
                                    ? std::string("SPH substrate as asked")
@@ -283,7 +283,7 @@ ExpandedImpact expand_particle_impact(const json& doc) {
   json time = doc.value("time", json::object());
   time["end_time"] = t_max;
   // SPH contact lands arriving particles with perfectly inelastic node-level
-  // impacts whose loss is not booked (README "SPH bodies": -6 % at 600 m/s
+  // impacts whose loss is not booked (docs/design.md "SPH bodies": -6 % at 600 m/s
   // on the thesis Al/Al model, the full ball at 2.5 um): the balance check
   // of SPH models allows that much more.
   if (sph && !time.contains("energy_balance_limit")) {

@@ -5,8 +5,8 @@
 // scene, at the fidelity the block asks for or, with `auto`, the cheapest that
 // represents it:
 //   particle discretization sph, or auto and v > 500 m/s (k_fe_max_velocity:
-//   the fastest impact the FE particle mesh survives, README robustness
-//   table)                           -> an SPH particle: sph-3d-* (SPH
+//   the fastest impact the FE particle mesh survives, docs/verification.md,
+//   FE impact robustness)            -> an SPH particle: sph-3d-* (SPH
 //                                       substrate) when the substrate asks
 //                                       for SPH or its yield stress is below
 //                                       sigma_p (it jets too), else

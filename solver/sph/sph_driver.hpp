@@ -1,6 +1,6 @@
 // A small explicit time loop for SPH bodies, used by the tests and the
 // benchmark until SPH bodies join solver/core's Simulation. It follows the
-// stages of the README's time step on particles only:
+// stages of the time step (docs/design.md) on particles only:
 //   1. update:  v(n+1/2) = v(n-1/2) + dt_v f / m (dt_v = the mean of the two
 //               half-step sizes, dt/2 at the first step); prescribed velocity
 //               components; a frictionless rigid plane (a particle that would

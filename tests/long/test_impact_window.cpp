@@ -5,7 +5,7 @@
 //     speed (some adhesion everywhere);
 //   activation (scenes/impact_al_al_activation.json, 30 % yield drop): no link
 //     below a critical velocity;
-//   activation and erosion (scenes/impact_al_al.json, D_adh_max 0.5): as
+//   activation and erosion (scenes/impact_al_al_thesis.json, D_adh_max 0.5): as
 //     activation, and adhesion lost again above a maximum velocity: links
 //     form but erode (damage of a side above D_adh_max) and the particle
 //     rebounds. Above ~1000 m/s the runs end unstable (more than
@@ -71,7 +71,7 @@ std::vector<Point> sweep(const std::string& scene) {
 TEST(impact_window, thesis_variants_show_the_three_behaviours) {
   const std::vector<Point> none = sweep("impact_al_al_no_criteria.json");
   const std::vector<Point> activation = sweep("impact_al_al_activation.json");
-  const std::vector<Point> erosion = sweep("impact_al_al.json");
+  const std::vector<Point> erosion = sweep("impact_al_al_thesis.json");
   // No criteria: links form at every speed that gives a verdict.
   for (const Point& p : none) {
     if (p.outcome != "unstable") {
