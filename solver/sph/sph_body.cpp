@@ -329,7 +329,7 @@ struct PairConstants {
 
 struct PairSums {
   Vec3 f_stress, f_visc, f_hg;  // N
-  double r_min;                 // current distance to the nearest active neighbour, m
+  double k_hg;                  // hourglass stiffness sum_j c_hg E_ij V_i V_j W_ij / r0^2, N/m
   double max_mu;                // largest approach mu_ij, m/s
 };
 
@@ -356,16 +356,15 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
     broadcast(vi[a], v[3 * i + a]);
   }
   const double Vi = b.volume_ref[i];
-  vd h_i, rho_i, E_i, zero = {}, inf;
+  vd h_i, rho_i, E_i, zero = {};
   broadcast(h_i, rec_i.h);
   broadcast(rho_i, rec_i.rho);
   broadcast(E_i, rec_i.E_hg);
-  broadcast(inf, infinity);
   const double mi = nodes.mass[base + i];
   // a = sum_j V_j g_ij, fp = sum_j S P_j B_j S V_j g_ij, then
   // f_stress = V_i (P_i B_i a + fp).
   vd a_sum[3] = {}, fp[3] = {}, fv[3] = {}, fh[3] = {};
-  vd r_sq_min = inf, max_mu = {};
+  vd k_sum = {}, max_mu = {};
   const double hg_scale = pc.c_hg * Vi;
   const int begin = b.pairs.offsets[i], end = b.pairs.offsets[i + 1];
   for (int k0 = begin; k0 < end; k0 += lanes) {
@@ -433,8 +432,6 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
     vd r;
     sqrt_lanes(r, r_sq);
     const vd inv_r = valid ? 1.0 / r : zero;
-    const vd r_sq_valid = valid ? r_sq : inf;
-    r_sq_min = r_sq_valid < r_sq_min ? r_sq_valid : r_sq_min;
 
     // Monaghan viscosity between approaching particles (vx < 0), with one
     // division: q = 1 / (d1 d2), mu = h vx / d1, Pi = (...) / d2.
@@ -460,6 +457,8 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
     }
     const vd E_ij = 0.5 * (E_i + E_j);
     const vd hg = hg_scale * E_ij * w * delta * inv_r * inv_r;
+    const vd k_pair = E_ij * w;  // the pair's hourglass stiffness over hg_scale
+    k_sum += valid ? k_pair : zero;
     for (int a = 0; a < 3; ++a) {
       fv[a] += central * xij[a];
       fh[a] -= hg * xij[a];
@@ -475,12 +474,12 @@ SPLAT_TARGET_CLONES PairSums pair_forces(const SphBody& b, const NodeSet& nodes,
   out.f_stress = Vi * (b.PB(i) * a_i + fp_i);
   out.f_visc = Vec3(sums[1][2], sums[1][3], sums[2][0]);
   out.f_hg = Vec3(sums[2][1], sums[2][2], sums[2][3]);
-  double r_sq = r_sq_min[0], mu_max = max_mu[0];
+  double k = k_sum[0], mu_max = max_mu[0];
   for (int l = 1; l < lanes; ++l) {
-    r_sq = std::min(r_sq, r_sq_min[l]);
+    k += k_sum[l];
     mu_max = std::max(mu_max, max_mu[l]);
   }
-  out.r_min = std::sqrt(r_sq);
+  out.k_hg = hg_scale * k;
   out.max_mu = mu_max;
   return out;
 }
@@ -638,6 +637,20 @@ SPLAT_TARGET_CLONES void block_stress(SphBody& b, std::size_t first, std::size_t
 }
 #pragma GCC diagnostic pop
 }  // namespace
+
+double sph_particle_time_step(const SphStepBoundInputs& in) {
+  const double v_sig = in.c + 1.2 * (in.alpha * in.c + in.beta * in.max_mu);
+  const double dt_signal = in.spacing * std::min(in.stretch, 1.0) / v_sig;
+  const double dt_hourglass = in.k_hg > 0.0 ? std::sqrt(2.0 * in.mass / in.k_hg) : infinity;
+  return std::min(dt_signal, dt_hourglass);
+}
+
+double smallest_stretch(const Mat3& F) {
+  if (!(F.determinant() > 0.0)) return 1.0;  // inverted: carries no stress
+  Eigen::SelfAdjointEigenSolver<Mat3> eig;
+  eig.computeDirect(F.transpose() * F, Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(eig.eigenvalues()(0), 0.0));
+}
 
 void sph_build_reference(SphBody& b) {
   const std::size_t n = b.size();
@@ -912,10 +925,9 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     const Vec3 vi = nodes.v[gi];
     s.viscosity_power -= p.f_visc.dot(vi);
     s.hourglass_power -= p.f_hg.dot(vi);
-    // A particle without active neighbours keeps the bound of its spacing.
-    const double L_i = p.r_min < infinity ? p.r_min : b.h[i] / b.settings.h_over_spacing;
-    const double v_sig = c + 1.2 * (alpha * c + beta * p.max_mu);
-    b.dt_bound[i] = L_i / v_sig;
+    const double spacing = std::min(b.h[i] / b.settings.h_over_spacing, b.spacing);
+    b.dt_bound[i] = sph_particle_time_step(
+        {spacing, smallest_stretch(b.F[i]), c, alpha, beta, p.max_mu, nodes.mass[gi], p.k_hg});
     s.dt_min = std::min(s.dt_min, b.dt_bound[i]);
   });
   result.dt_stable = infinity;

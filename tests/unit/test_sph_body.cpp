@@ -414,6 +414,116 @@ TEST(SphForces, ConserveLinearAndAngularMomentum) {
   EXPECT_LT(moment.norm(), 1e-12 * scale * s.radius);
 }
 
+// The time-step bound follows the kernel's spacing, the compression of F and
+// the signal speed, not the current distance of two particles: a particle
+// next to a symmetry plane that drifts onto it nears its own mirror image (at
+// twice its distance to the plane) while its neighbourhood is hardly
+// compressed. The quarter Al/Al impact's step followed that distance down to
+// the floor when the bound read it.
+TEST(SphTimeStep, ParticleOnItsMirrorImageKeepsTheSignalSpeedBound) {
+  ParticleSpec s;
+  s.shape = ParticleShape::box;
+  s.lattice = Lattice::cubic;
+  s.hi = Vec3(6e-4, 6e-4, 6e-4);
+  s.spacing = 1e-4;
+  const ParticleCloud c = generate_particles(s);
+  const SymmetryPlanes planes = {{0, 0.0}};  // the particles nearest it at x = d / 2
+  NodeSet nodes;
+  SphBody body = make_sph_body("block", c, elastic_aluminium(), elastic_switches(), SphSettings{},
+                               planes, Vec3::Zero(), 300.0, 1, nodes);
+  const double d = body.spacing, cp = body.constants.wave_speed;
+  const double alpha = body.settings.visc_linear, beta = body.settings.visc_quadratic;
+  // The particle at the middle of the face x = d / 2 (a full neighbourhood
+  // with the ghosts) moves to 0.005 d from the plane, at 10 m/s towards it:
+  // 0.01 d from its image, closing at 20 m/s.
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    if ((c.x[k] - Vec3(0.5 * d, 2.5 * d, 2.5 * d)).norm() <
+        (c.x[i] - Vec3(0.5 * d, 2.5 * d, 2.5 * d)).norm()) {
+      i = k;
+    }
+  }
+  ASSERT_NEAR(c.x[i].x(), 0.5 * d, 1e-12 * d);
+  // At rest: Monaghan's bound over the spacing (the hourglass springs of the
+  // lattice allow about 4x more).
+  sph_internal_forces(body, nodes, 0.0);
+  const double dt_rest = body.dt_bound[i];
+  EXPECT_NEAR(dt_rest, d / (cp * (1.0 + 1.2 * alpha)), 1e-12 * dt_rest);
+
+  nodes.x[i].x() = 0.005 * d;
+  nodes.v[i].x() = -10.0;
+  std::fill(nodes.f.begin(), nodes.f.end(), Vec3::Zero());
+  const SphStepResult r = sph_internal_forces(body, nodes, 0.0);
+  EXPECT_LE(r.dt_stable, body.dt_bound[i]);
+  // F_i sees the move only through the kernel weight of the image among the
+  // ~50 neighbours: its smallest stretch stays near 1 (a bound on the
+  // distance to the image falls to 0.01 of the rest bound).
+  const double s_i = smallest_stretch(body.F[i]);
+  EXPECT_GT(s_i, 0.8);
+  // mu_ij <= 5 |v_ij| at any distance (the 0.01 h^2 in its denominator), so
+  // the signal speed grows by at most 1.2 beta 5 |v_ij|.
+  const double v_ij = 20.0;
+  const double bound = s_i * d / (cp * (1.0 + 1.2 * alpha) + 1.2 * beta * 5.0 * v_ij);
+  std::printf(
+      "step bound at rest %.4e s, particle 0.01 d from its image %.4e s (>= %.4e s, smallest "
+      "stretch %.3f)\n",
+      dt_rest, body.dt_bound[i], bound, s_i);
+  EXPECT_GE(body.dt_bound[i], bound * (1.0 - 1e-12));
+  EXPECT_GT(body.dt_bound[i], 0.8 * dt_rest);
+}
+
+// The hourglass springs are the one term stiffer for pairs close in the
+// reference (c_hg E V_i V_j W / r0^2): a block whose reference holds a pair
+// 0.05 d apart runs stably on the bound, which the springs then set, and
+// blows up at 0.9 of the signal-speed bound alone.
+TEST(SphTimeStep, HourglassSpringsOfAClosePairBoundTheStep) {
+  ParticleSpec s;
+  s.shape = ParticleShape::box;
+  s.lattice = Lattice::cubic;
+  s.hi = Vec3(5e-4, 5e-4, 5e-4);
+  s.spacing = 1e-4;
+  ParticleCloud c = generate_particles(s);
+  const double d = c.spacing;
+  // The centre particle moves to 0.05 d from its neighbour along x.
+  std::size_t i = 0, j = 0;
+  const Vec3 centre(2.5 * d, 2.5 * d, 2.5 * d);
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    if ((c.x[k] - centre).norm() < (c.x[i] - centre).norm()) i = k;
+  }
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    if ((c.x[k] - c.x[i] - Vec3(d, 0, 0)).norm() < 1e-3 * d) j = k;
+  }
+  ASSERT_NE(i, j);
+  c.x[i] = c.x[j] - Vec3(0.05 * d, 0, 0);
+  // 300 steps from random velocities up to 1.7 m/s at 0.9 of the bound, or
+  // at a fixed step; true when the velocities stay bounded.
+  constexpr double stability = 0.9;
+  const auto run = [&](double fixed_dt, double& first_dt) {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    SphDriver drv;
+    drv.stability = stability;
+    drv.fixed_dt = fixed_dt;
+    drv.bodies.push_back(make_sph_body("block", c, elastic_aluminium(), elastic_switches(),
+                                       SphSettings{}, {}, Vec3::Zero(), 300.0, 1, drv.nodes));
+    for (std::size_t k = 0; k < c.size(); ++k) drv.nodes.v[k] = Vec3(u(rng), u(rng), u(rng));
+    SphOutcome out = drv.start();
+    first_dt = drv.dt();
+    for (int step = 0; step < 300 && out == SphOutcome::running; ++step) out = drv.step();
+    double v_max = 0.0;
+    for (const Vec3& v : drv.nodes.v) v_max = std::max(v_max, v.norm());
+    return out == SphOutcome::running && v_max < 10.0;
+  };
+  double dt = 0.0, unused = 0.0;
+  EXPECT_TRUE(run(0.0, dt));
+  const double dt_bound = dt / stability;
+  const double cp = derive_constants(elastic_aluminium()).wave_speed;
+  const double dt_signal = d / (cp * (1.0 + 1.2 * SphSettings{}.visc_linear));
+  std::printf("close pair: step bound %.4e s, signal-speed bound %.4e s\n", dt_bound, dt_signal);
+  EXPECT_LT(dt_bound, 0.5 * dt_signal);
+  EXPECT_FALSE(run(stability * dt_signal, unused));
+}
+
 // The same run on 1 and 2 threads gives identical positions.
 TEST(SphForces, IndependentOfThreadCount) {
 #ifdef _OPENMP
