@@ -5,8 +5,8 @@
 // function here acts on ONE pair; the loop over pairs and the
 // Lagrange-multiplier solve live in the contact stage, which feeds the
 // activation and erosion tests and the flow-stress cap with the interface
-// state averaged over AdhesionParams::averaging_length
-// (interface_average.hpp), not with the state of one element.
+// state of the material within AdhesionParams::averaging_length of the
+// contact point (interface_average.hpp), not with the state of one element.
 //
 // Sign conventions. n is the pair normal; the separation rate g_dot >= 0
 // means the pair opens (the thesis's (V1 - V2).n12 with the opposite sign).
@@ -123,7 +123,8 @@ struct AdhesionParams {
   double yield_drop = 0.0;  // fraction in [0,1): activation when sigma_y <= (1-x)*peak
   ActivationSides sides = ActivationSides::either;
   std::optional<double> D_adh_max;  // damage at which a link erodes; empty = never
-  // Length over which activation and erosion average the interface state
+  // Radius of the material around a contact point over which activation,
+  // erosion and the flow-stress cap average each side's state
   // (interface_average.hpp), m; 0 = each node's own elements.
   double averaging_length = k_default_averaging_length;
 };

@@ -1,5 +1,6 @@
 #include "solver/adhesion/interface_average.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -9,7 +10,9 @@ namespace {
 
 using CellKey = std::int64_t;
 
-// Cell of side l holding x; 21 bits per axis cover +-1e6 cells.
+// Cell (ix, iy, iz) packed in 21 bits per axis (indices wrap beyond +-1e6
+// cells, which only merges far cells into one bucket: the distance test
+// below still decides).
 CellKey cell_key(long ix, long iy, long iz) {
   constexpr long k_half = 1L << 20;
   const auto wrap = [](long i) { return static_cast<CellKey>((i + k_half) & ((1L << 21) - 1)); };
@@ -23,7 +26,7 @@ struct CellGrid {
   long index(double c) const { return static_cast<long>(std::floor(c / size)); }
 };
 
-CellGrid build_grid(const std::vector<InterfaceSample>& samples, double length) {
+CellGrid build_grid(const std::vector<MaterialSample>& samples, double length) {
   CellGrid g;
   g.size = length;
   for (std::size_t j = 0; j < samples.size(); ++j) {
@@ -34,53 +37,43 @@ CellGrid build_grid(const std::vector<InterfaceSample>& samples, double length) 
   return g;
 }
 
-void accumulate(InterfaceAverage& sum, const InterfaceSample& s, double w) {
-  sum.slave.yield_ratio += w * s.slave.yield_ratio;
-  sum.slave.damage += w * s.slave.damage;
-  sum.slave.flow_stress += w * s.slave.flow_stress;
-  sum.master.flow_stress += w * s.master.flow_stress;
-  sum.master.yield_ratio += w * s.master.yield_ratio;
-  sum.master.damage += w * s.master.damage;
-}
-
-InterfaceAverage average_one(const std::vector<InterfaceSample>& samples, const CellGrid& g,
-                             std::size_t k, double length) {
-  const InterfaceSample& me = samples[k];
-  InterfaceAverage sum{{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+InterfaceSideState average_one(const std::vector<MaterialSample>& samples, const CellGrid& g,
+                               const Vec3& c, double length, const InterfaceSideState& fallback) {
+  InterfaceSideState sum{0.0, 0.0, 0.0};
   double w_sum = 0.0;
-  const long cx = g.index(me.x.x()), cy = g.index(me.x.y()), cz = g.index(me.x.z());
+  const long cx = g.index(c.x()), cy = g.index(c.y()), cz = g.index(c.z());
   for (long ix = cx - 1; ix <= cx + 1; ++ix) {
     for (long iy = cy - 1; iy <= cy + 1; ++iy) {
       for (long iz = cz - 1; iz <= cz + 1; ++iz) {
         const auto it = g.cells.find(cell_key(ix, iy, iz));
         if (it == g.cells.end()) continue;
         for (const int j : it->second) {
-          const double r = (samples[j].x - me.x).norm();
-          const double w = samples[j].area * std::max(0.0, 1.0 - r / length);
+          const MaterialSample& s = samples[j];
+          const double w = s.weight * std::max(0.0, 1.0 - (s.x - c).norm() / length);
           if (!(w > 0.0)) continue;
-          accumulate(sum, samples[j], w);
+          sum.yield_ratio += w * s.state.yield_ratio;
+          sum.damage += w * s.state.damage;
+          sum.flow_stress += w * s.state.flow_stress;
           w_sum += w;
         }
       }
     }
   }
-  if (!(w_sum > 0.0)) return {me.slave, me.master};
-  const double inv = 1.0 / w_sum;
-  return {{sum.slave.yield_ratio * inv, sum.slave.damage * inv, sum.slave.flow_stress * inv},
-          {sum.master.yield_ratio * inv, sum.master.damage * inv, sum.master.flow_stress * inv}};
+  if (!(w_sum > 0.0)) return fallback;
+  return {sum.yield_ratio / w_sum, sum.damage / w_sum, sum.flow_stress / w_sum};
 }
 
 }  // namespace
 
-std::vector<InterfaceAverage> average_interface(const std::vector<InterfaceSample>& samples,
-                                                double length) {
-  std::vector<InterfaceAverage> out(samples.size());
-  if (!(length > 0.0)) {
-    for (std::size_t k = 0; k < samples.size(); ++k) out[k] = {samples[k].slave, samples[k].master};
-    return out;
-  }
+std::vector<InterfaceSideState> average_around(const std::vector<MaterialSample>& samples,
+                                               const std::vector<Vec3>& centres, double length,
+                                               const std::vector<InterfaceSideState>& fallback) {
+  if (!(length > 0.0) || samples.empty()) return fallback;
   const CellGrid g = build_grid(samples, length);
-  for (std::size_t k = 0; k < samples.size(); ++k) out[k] = average_one(samples, g, k, length);
+  std::vector<InterfaceSideState> out(centres.size());
+  for (std::size_t k = 0; k < centres.size(); ++k) {
+    out[k] = average_one(samples, g, centres[k], length, fallback[k]);
+  }
   return out;
 }
 

@@ -1,18 +1,23 @@
-// Nonlocal average of the interface state over a physical length, so that
-// link activation and erosion read a property of the interface, not of the
-// single element that happens to carry a node.
+// Nonlocal average of the material state next to the interface over a
+// physical length, so that link activation, erosion and the bond's strength
+// read a property of the material around a contact point, not of the single
+// element that happens to carry a node.
 //
-// Each interface sample j (a slave node in a contact pair) carries its
-// position x_j (m), its adhesive area A_j (m^2) and the raw state of both
-// sides: the yield ratio sigma_y_static / sigma_y_static_peak (-) and the
-// damage D (-). The averaged state of sample k is
-//   <q>_k = sum_j w_kj q_j / sum_j w_kj,   w_kj = A_j max(0, 1 - |x_j - x_k| / l)
-// (a hat of radius l, Bazant and Jirasek 2002's nonlocal integral form with a
-// truncated cone weight, restricted to the interface). The sample itself always
-// counts (w_kk = A_k), so with l below the node spacing, or l = 0, each sample
-// keeps its own state. A localised spike of width h < l enters the average with
-// weight ~ h / l: the average converges as the mesh is refined while the peak
-// does not (thesis 2.2.2 reads the peak).
+// The points j are the material points of one side (element centres of an
+// FE body, particles of an SPH body) with position x_j (m), weight V_j (their
+// volume, m^3, or any common scale: per radian in axisymmetric runs) and state
+// q_j (the yield ratio sigma_y_static / sigma_y_static_peak, the damage D and
+// the flow stress sigma_y_static). The state around a centre c_k (a contact
+// point) is
+//   <q>_k = sum_j w_kj q_j / sum_j w_kj,   w_kj = V_j max(0, 1 - |x_j - c_k| / l)
+// (the nonlocal integral form with a truncated-cone weight, Bazant and
+// Jirasek 2002, J. Eng. Mech. 128(11), eq. 1, over the side's volume within l
+// of the contact point). It averages both along the interface and into the
+// material: the softened layer of an adiabatic shear band at the interface is
+// about one element thick, its peak grows as the mesh is refined, while its
+// weight in the average shrinks with it, so the average converges. A centre
+// with no point within l (l below half the element size) keeps its fallback
+// state (the node's own elements).
 #pragma once
 
 #include <vector>
@@ -21,7 +26,7 @@
 
 namespace splat {
 
-// The state of one side of the interface at one sample, or its average.
+// The state of one side of the interface at one point, or its average.
 struct InterfaceSideState {
   double yield_ratio = 1.0;  // sigma_y_static / sigma_y_static_peak, -
   double damage = 0.0;       // D, -
@@ -30,20 +35,16 @@ struct InterfaceSideState {
   double flow_stress = 1e30;
 };
 
-struct InterfaceSample {
+struct MaterialSample {
   Vec3 x = Vec3::Zero();  // m
-  double area = 0.0;      // m^2 (any common scale: per radian in axisymmetric runs)
-  InterfaceSideState slave;
-  InterfaceSideState master;
+  double weight = 0.0;    // volume, m^3 (any common scale)
+  InterfaceSideState state;
 };
 
-struct InterfaceAverage {
-  InterfaceSideState slave;
-  InterfaceSideState master;
-};
-
-// The averaged state of every sample, in the order given; `length` is l (m).
-std::vector<InterfaceAverage> average_interface(const std::vector<InterfaceSample>& samples,
-                                                double length);
+// The averaged state around each centre (`length` = l, m); `fallback[k]` for
+// a centre with no sample within l, and for l = 0.
+std::vector<InterfaceSideState> average_around(const std::vector<MaterialSample>& samples,
+                                               const std::vector<Vec3>& centres, double length,
+                                               const std::vector<InterfaceSideState>& fallback);
 
 }  // namespace splat

