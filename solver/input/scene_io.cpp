@@ -566,7 +566,15 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
     in.penalty_stiffness = value_or(j, "penalty_stiffness", 0.0);
     in.friction = value_or(j, "friction", 0.0);
     in.solver = from_name(contact_solver_names, value_or(j, "solver", std::string("pgs")));
-    in.two_pass = value_or(j, "two_pass", false);
+    // Two passes by default where both sides are FE and the contact is a
+    // Lagrange one (see ContactSettings::two_pass); SPH pairs and penalty
+    // springs keep one pass.
+    const BodySpec* mb = find_body(scene, in.master);
+    const BodySpec* sb = find_body(scene, in.slave);
+    const bool fe_pair = mb != nullptr && sb != nullptr &&
+                         mb->discretization != Discretization::sph &&
+                         sb->discretization != Discretization::sph;
+    in.two_pass = value_or(j, "two_pass", fe_pair && in.method == ContactMethod::lagrange);
     if (const auto a = j.find("adhesion"); a != j.end()) {
       in.adhesion = adhesion_from_json(*a);
       if (in.method != ContactMethod::lagrange) {
