@@ -41,6 +41,14 @@ double yield_ratio(const PointState& st) {
   return st.sigma_y_static_peak > 0.0 ? st.sigma_y_static / st.sigma_y_static_peak : 1.0;
 }
 
+// Key of a pair for the warm start: its slave's global node and its face.
+// A node is a slave in one pass only (master and slave bodies differ), so the
+// key also tells the pass.
+std::uint64_t pair_key(int node, int face) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(node)) << 32) |
+         static_cast<std::uint32_t>(face);
+}
+
 // Elements of `body` that contain global node g (ascending).
 std::vector<int> elements_of_node(const FeBody& body, int g) {
   std::vector<int> out;
@@ -225,6 +233,7 @@ void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const N
     }
   }
   slave_ = std::move(slave);
+  last_multiplier_.clear();  // keyed by slave face indices, which changed
   touched_ = std::move(touched);
   pressed_ = std::move(pressed);
   link_touching_ = std::move(touching);
@@ -350,6 +359,42 @@ void ContactInterface::build_problem(const NodeSet& nodes, const std::vector<std
     problem_.b_hold.push_back(problem_.b.back());
     problem_.mu.push_back(settings_.friction);
   }
+}
+
+void ContactInterface::drop_repeated_rows(const NodeSet& nodes,
+                                          const std::vector<std::uint8_t>& mask,
+                                          std::vector<DetectedPair>& pairs, double dt) {
+  if (pairs.size() <= first_pass_pairs_) return;
+  std::vector<std::uint8_t> repeated =
+      repeated_rows(problem_, first_pass_pairs_, settings_.max_row_correlation);
+  // An active link holds its pair's gap both ways; a compressive
+  // second-pass row on any of its nodes could cancel the link's tension
+  // with an equal push on a nearly parallel row, so that the link is
+  // charged work it never does (measured: the elastic sphere with sigma_c
+  // large exhausted its links while rebounding at the free speed).
+  if (settings_.adhesion) {
+    std::vector<std::uint8_t> bonded(local_nodes_.size(), 0);
+    for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+      if (!pairs[i].primary || link_state_[pairs[i].slave] != LinkState::active) continue;
+      for (int n : problem_.node[i]) {
+        if (n >= 0) bonded[n] = 1;
+      }
+    }
+    for (std::size_t i = first_pass_pairs_; i < pairs.size(); ++i) {
+      for (int n : problem_.node[i]) {
+        if (n >= 0 && bonded[n]) repeated[i] = 1;
+      }
+    }
+  }
+  if (std::none_of(repeated.begin(), repeated.end(), [](std::uint8_t r) { return r != 0; })) {
+    return;
+  }
+  std::vector<DetectedPair> kept;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (!repeated[i]) kept.push_back(pairs[i]);
+  }
+  pairs = std::move(kept);
+  build_problem(nodes, mask, pairs, dt);
 }
 
 double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x) const {
@@ -574,7 +619,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
                                      const std::vector<SphBody>& sph) {
   if (!(dt > 0.0)) return;
   const bool adhesive = settings_.adhesion.has_value();
-  const std::vector<DetectedPair> pairs = detect(nodes);
+  std::vector<DetectedPair> pairs = detect(nodes);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;
   stats_.links_in_tension = 0;
@@ -585,11 +630,25 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
     update_links_before_solve(nodes, pairs, bodies, sph);
     std::fill(link_touching_.begin(), link_touching_.end(), 0);
   }
+  if (pairs.empty()) last_multiplier_.clear();
   if (!pairs.empty()) {
     for (const DetectedPair& p : pairs) {
       stats_.max_penetration = std::max(stats_.max_penetration, -p.geometry.gap);
     }
     build_problem(nodes, mask, pairs, dt);
+    drop_repeated_rows(nodes, mask, pairs, dt);
+    // Warm start: each pair starts from the multiplier it carried in the
+    // last step, so a pressed contact needs only the sweeps that follow its
+    // change over one step.
+    auto slave_node = [&](std::size_t i) {
+      const ContactSurface& sl = i < first_pass_pairs_ ? slave_ : master_;
+      return sl.nodes[pairs[i].slave];
+    };
+    problem_.p_start.assign(pairs.size(), 0.0);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      const auto it = last_multiplier_.find(pair_key(slave_node(i), pairs[i].face));
+      if (it != last_multiplier_.end()) problem_.p_start[i] = it->second * dt;
+    }
     // Active links: tension allowed down to the cap, holding the opening the
     // pair has at the start of the step, g_n = g_{n+1} - dt C v_{n+1/2}.
     std::vector<std::size_t> links;
@@ -634,7 +693,10 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
           resolve = true;
         }
       }
-      if (resolve) sol = solve_contact(problem_, settings_.solver);
+      if (resolve) {
+        problem_.p_start = sol.p_n;
+        sol = solve_contact(problem_, settings_.solver);
+      }
       double adhesion_work = 0.0;
       for (std::size_t j = 0; j < links.size(); ++j) {
         const int k = pairs[links[j]].slave;
@@ -668,6 +730,11 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
       nodes.x[g] += dt * dv;
     }
     correct_positions(nodes, pairs, sol, dt);
+    last_multiplier_.clear();
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (sol.p_n[i] != 0.0)
+        last_multiplier_[pair_key(slave_node(i), pairs[i].face)] = sol.p_n[i] / dt;
+    }
     // Contact work: every impulse (compression, link tension, friction) times
     // the corrected relative velocity (eq. 1.21), the work of a force held
     // over the step on the displacement it drives. This, not the link's
@@ -776,6 +843,7 @@ void ContactInterface::correct_positions(NodeSet& nodes, const std::vector<Detec
   // pair reaches g_n + pushout, every other pair may close to contact but not
   // beyond. Plain contact rows (no tension, no friction); x += dt w, v kept.
   ContactProblem pos = problem_;
+  pos.p_start.clear();
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const double g_after = pairs[i].geometry.gap + dt * normal_rate(problem_, i, sol.dv);
     const double target = pushout_[i] > 0.0 ? start_gap_[i] + pushout_[i] : 0.0;

@@ -56,6 +56,14 @@ ContactSolution solve_pgs(const ContactProblem& P, const ContactSolverSettings& 
     ht1[i] = row_diag(P, i, P.tangent1[i]);
     ht2[i] = row_diag(P, i, P.tangent2[i]);
   }
+  if (P.p_start.size() == np) {
+    for (std::size_t i = 0; i < np; ++i) {
+      const double p0 = std::max(P.lo[i], P.p_start[i]);
+      if (p0 == 0.0 || !(hn[i] > 0.0)) continue;
+      sol.p_n[i] = p0;
+      row_apply(P, i, P.normal[i], p0, sol.dv);
+    }
+  }
   const double tol = st.tolerance * std::max(b_scale(P), 1e-300);
   // Relative tangential velocity of pair i along d, with the corrections so far.
   auto slip = [&](std::size_t i, const Vec3& d) {
@@ -67,11 +75,12 @@ ContactSolution solve_pgs(const ContactProblem& P, const ContactSolverSettings& 
     return s;
   };
   for (int it = 1; it <= st.max_iterations; ++it) {
+    const double w = it > st.plain_sweeps ? st.over_relaxation : 1.0;
     double change = 0.0;
     for (std::size_t i = 0; i < np; ++i) {
       if (!(hn[i] > 0.0)) continue;  // every node of the pair is prescribed
       const double y = row_dot(P, i, P.normal[i], sol.dv);
-      const double p_contact = sol.p_n[i] - (y - P.b[i]) / hn[i];
+      const double p_contact = sol.p_n[i] - w * (y - P.b[i]) / hn[i];
       double p_new = std::max(0.0, p_contact);
       if (P.lo[i] < 0.0 && p_contact <= 0.0) {
         // Bonded: hold the opening if that takes tension, within the cap.
@@ -215,6 +224,58 @@ double normal_rate(const ContactProblem& P, std::size_t i, const std::vector<Vec
 
 double normal_inverse_mass(const ContactProblem& P, std::size_t i) {
   return row_diag(P, i, P.normal[i]);
+}
+
+std::vector<std::uint8_t> repeated_rows(const ContactProblem& P, std::size_t first,
+                                        double max_correlation) {
+  const std::size_t np = P.pairs();
+  std::vector<std::uint8_t> out(np, 0);
+  if (first >= np) return out;
+  // The rows < first through each node (CSR).
+  std::vector<int> offsets(P.inv_mass.size() + 1, 0), entries;
+  for (std::size_t j = 0; j < first; ++j) {
+    for (int k = 0; k < 5; ++k) {
+      if (P.node[j][k] >= 0) ++offsets[P.node[j][k] + 1];
+    }
+  }
+  for (std::size_t n = 0; n < P.inv_mass.size(); ++n) offsets[n + 1] += offsets[n];
+  entries.resize(offsets.back());
+  std::vector<int> fill(offsets.begin(), offsets.end() - 1);
+  for (std::size_t j = 0; j < first; ++j) {
+    for (int k = 0; k < 5; ++k) {
+      if (P.node[j][k] >= 0) entries[fill[P.node[j][k]]++] = static_cast<int>(j);
+    }
+  }
+  // H_ij over the nodes rows i and j share.
+  auto coupling = [&](std::size_t i, std::size_t j) {
+    double h = 0.0;
+    for (int a = 0; a < 5; ++a) {
+      const int n = P.node[i][a];
+      if (n < 0) continue;
+      for (int b = 0; b < 5; ++b) {
+        if (P.node[j][b] != n) continue;
+        h += P.coef[i][a] * P.coef[j][b] * P.normal[i].cwiseProduct(P.normal[j]).dot(P.inv_mass[n]);
+      }
+    }
+    return h;
+  };
+  for (std::size_t i = first; i < np; ++i) {
+    const double hi = row_diag(P, i, P.normal[i]);
+    if (!(hi > 0.0)) continue;
+    for (int a = 0; a < 5 && !out[i]; ++a) {
+      const int n = P.node[i][a];
+      if (n < 0) continue;
+      for (int e = offsets[n]; e < offsets[n + 1]; ++e) {
+        const std::size_t j = static_cast<std::size_t>(entries[e]);
+        const double hj = row_diag(P, j, P.normal[j]);
+        if (hj > 0.0 && coupling(i, j) >= max_correlation * std::sqrt(hi * hj)) {
+          out[i] = 1;
+          break;
+        }
+      }
+    }
+  }
+  return out;
 }
 
 double contact_violation(const ContactProblem& P, const ContactSolution& s) {

@@ -46,6 +46,10 @@ struct ContactProblem {
   std::vector<double> lo;      // lower bound of the normal impulse, N s (0, or < 0 bonded)
   std::vector<double> b_hold;  // bonded rows: C dv that stops the opening, m/s
   std::vector<double> mu;      // friction coefficient per pair, -
+  // PGS starting impulse per pair (warm start, N s), clipped to [lo, inf);
+  // empty: start from p = 0. The solution does not depend on it where it is
+  // unique; it only saves sweeps.
+  std::vector<double> p_start;
   // Per local node.
   std::vector<Vec3> inv_mass;  // 1/m per component, 0 where prescribed, 1/kg
   std::vector<Vec3> velocity;  // v_{n+1/2} before the correction, m/s (friction)
@@ -61,6 +65,7 @@ struct ContactProblem {
     lo.clear();
     b_hold.clear();
     mu.clear();
+    p_start.clear();
   }
 };
 
@@ -79,6 +84,15 @@ struct ContactSolverSettings {
   // than tolerance x max_i |b_i| (measured: bench_contact_solver).
   double tolerance = 1e-10;
   int max_iterations = 2000;
+  // Projected SOR: after plain_sweeps Gauss-Seidel sweeps the contact
+  // (compressive) updates are over-relaxed, p <- max(0, p - w (H p - b)_i /
+  // H_ii); it converges for 0 < w < 2 (symmetric positive semidefinite H).
+  // Well-conditioned systems (one pass: 6-14 sweeps) end before it starts;
+  // the nearly dependent rows of two-pass contact take 2-3x fewer sweeps
+  // with w = 1.5 (measured: Al/Al 600 m/s at 16 elements across, 1945 -> 707
+  // sweeps at most; w = 1.7: 381).
+  int plain_sweeps = 20;
+  double over_relaxation = 1.5;  // w, -
 };
 
 ContactSolution solve_contact(const ContactProblem& problem, const ContactSolverSettings& settings);
@@ -87,6 +101,12 @@ ContactSolution solve_contact(const ContactProblem& problem, const ContactSolver
 double normal_rate(const ContactProblem& problem, std::size_t i, const std::vector<Vec3>& dv);
 // H_ii = C_i M^-1 C_i^T along pair i's normal, 1/kg.
 double normal_inverse_mass(const ContactProblem& problem, std::size_t i);
+
+// Rows i >= first that nearly repeat a row j < first: their correlation in
+// the M^-1 metric, H_ij / sqrt(H_ii H_jj), is at least max_correlation
+// (1: the same constraint). Returns a flag per row (0 for rows < first).
+std::vector<std::uint8_t> repeated_rows(const ContactProblem& problem, std::size_t first,
+                                        double max_correlation);
 
 // Largest violation of the complementarity conditions of a solution: the
 // most negative (H p - b)_i over all pairs, and the largest |H p - b|_i over

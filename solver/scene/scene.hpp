@@ -103,7 +103,7 @@ struct InteractionSpec {
   double penalty_stiffness = 0.0;  // Pa/m; 0 = 0.1 K_min / h_min (see model_builder)
   double friction = 0.0;           // Coulomb coefficient, -
   ContactSolverKind solver = ContactSolverKind::pgs;
-  bool two_pass = false;                   // also master nodes on slave faces
+  bool two_pass = false;  // also master nodes on slave faces (default: FE-FE Lagrange pairs)
   std::optional<AdhesionParams> adhesion;  // cohesive law on the slave nodes' pairs
 };
 
