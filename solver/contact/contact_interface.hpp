@@ -77,9 +77,8 @@ struct ContactSettings {
   // sphere (issue 22 item 1), a substrate node passes through an Al particle
   // at the jetting lip (item 2), and the contact patch test on non-matching
   // meshes spreads the stress by 15 % (two passes: 4 %). Scenes turn it on
-  // for FE-FE Lagrange pairs without adhesion unless told otherwise
-  // (scene_io.cpp); the default here is the one pass the interface unit
-  // tests are written for.
+  // for FE-FE Lagrange pairs unless told otherwise (scene_io.cpp); the
+  // default here is the one pass the interface unit tests are written for.
   bool two_pass = false;
   // Two passes: a master node that coincides with a slave node (matching
   // meshes, the sphere's pole on the block's corner node) gives a

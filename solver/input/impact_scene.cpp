@@ -407,8 +407,8 @@ ExpandedImpact expand_particle_impact(const json& doc) {
                     {"slave", "particle"},
                     {"method", "lagrange"}};
     if (has_adhesion) contact["adhesion"] = adhesion;
-    // Two passes are the contact's default between FE bodies without
-    // adhesion (scene_io.cpp); the block may choose.
+    // Two passes are the contact's default between FE bodies (scene_io.cpp);
+    // the block may ask for the one pass of the thesis.
     if (const auto tp = pi.find("two_pass_contact"); tp != pi.end()) {
       if (sph && tp->get<bool>()) fail(base + "/two_pass_contact", "is for FE models only");
       contact["two_pass"] = *tp;

@@ -566,6 +566,15 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
     in.penalty_stiffness = value_or(j, "penalty_stiffness", 0.0);
     in.friction = value_or(j, "friction", 0.0);
     in.solver = from_name(contact_solver_names, value_or(j, "solver", std::string("pgs")));
+    // Two passes by default where both sides are FE and the contact is a
+    // Lagrange one (see ContactSettings::two_pass); SPH pairs and penalty
+    // springs keep one pass.
+    const BodySpec* mb = find_body(scene, in.master);
+    const BodySpec* sb = find_body(scene, in.slave);
+    const bool fe_pair = mb != nullptr && sb != nullptr &&
+                         mb->discretization != Discretization::sph &&
+                         sb->discretization != Discretization::sph;
+    in.two_pass = value_or(j, "two_pass", fe_pair && in.method == ContactMethod::lagrange);
     if (const auto a = j.find("adhesion"); a != j.end()) {
       in.adhesion = adhesion_from_json(*a);
       if (in.method != ContactMethod::lagrange) {
@@ -575,18 +584,6 @@ InteractionSpec parse_interaction(const json& j, const std::string& p, const Sce
         problems.add(at(p, "adhesion"), "needs solver \"pgs\" (bonded rows)");
       }
     }
-    // Two passes by default where both sides are FE, the contact is a
-    // Lagrange one and carries no adhesion (see ContactSettings::two_pass).
-    // SPH pairs and penalty springs keep one pass; so do adhesive pairs,
-    // whose links act on the first pass only: with two passes the thesis
-    // scene at 500 m/s ends undecided and a 1 Pa cohesive cap sticks.
-    const BodySpec* mb = find_body(scene, in.master);
-    const BodySpec* sb = find_body(scene, in.slave);
-    const bool fe_pair = mb != nullptr && sb != nullptr &&
-                         mb->discretization != Discretization::sph &&
-                         sb->discretization != Discretization::sph;
-    in.two_pass =
-        value_or(j, "two_pass", fe_pair && in.method == ContactMethod::lagrange && !in.adhesion);
     if (in.friction > 0.0 && in.method == ContactMethod::lagrange &&
         in.solver == ContactSolverKind::active_set) {
       problems.add(at(p, "solver"), "active-set is frictionless: use pgs with friction > 0");
