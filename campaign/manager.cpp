@@ -300,7 +300,8 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
       samples[p.point.params_key].push_back(classify(p));
     for (const WindowRecord& w : windows) {
       const Window win = compute_window(samples[w.params_key]);
-      for (double v : refinement_points(win, spec.refinement->tolerance)) {
+      for (double v :
+           refinement_points(win, spec.refinement->tolerance, spec.refinement->guard_band)) {
         if (budget <= 0) break;
         extra.push_back(make_job(spec, json::parse(w.params), v, resolve, version));
         --budget;

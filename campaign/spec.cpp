@@ -162,8 +162,8 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
 
   if (doc.contains("refinement")) {
     const json& r = doc.at("refinement");
-    s.refinement =
-        RefinementOptions{r.at("tolerance").get<double>(), r.value("max_extra_jobs", 100)};
+    s.refinement = RefinementOptions{r.at("tolerance").get<double>(),
+                                     r.value("max_extra_jobs", 100), r.value("guard_band", 0.0)};
   }
   if (doc.contains("job")) {
     const json& j = doc.at("job");

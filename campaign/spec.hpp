@@ -32,6 +32,7 @@ struct ParameterAxis {
 struct RefinementOptions {
   double tolerance = 0.0;  // m/s; bracket width at which an edge counts as found
   int max_extra_jobs = 100;
+  double guard_band = 0.0;  // m/s; band around each edge sampled to the tolerance (islands)
 };
 
 struct JobOptions {

@@ -37,6 +37,7 @@ Window compute_window(std::vector<Sample> samples) {
   if (samples.empty()) return w;
   w.min_velocity = samples.front().velocity;
   w.max_velocity = samples.back().velocity;
+  for (const Sample& s : samples) w.sampled.push_back(s.velocity);
   std::vector<std::size_t> classified;
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const Sample& s = samples[i];
@@ -93,7 +94,22 @@ Window compute_window(std::vector<Sample> samples) {
   return w;
 }
 
-std::vector<double> refinement_points(const Window& window, double tolerance) {
+namespace {
+
+// Midpoints of the gaps wider than `tolerance` between consecutive sampled
+// velocities that reach into (lo - band, hi + band).
+void guard_band_points(const Window& w, double lo, double hi, double band, double tolerance,
+                       std::vector<double>& out) {
+  const std::vector<double>& v = w.sampled;
+  for (std::size_t i = 0; i + 1 < v.size(); ++i) {
+    const bool inside = v[i] < hi + band && v[i + 1] > lo - band;
+    if (inside && v[i + 1] - v[i] > tolerance) out.push_back(0.5 * (v[i] + v[i + 1]));
+  }
+}
+
+}  // namespace
+
+std::vector<double> refinement_points(const Window& window, double tolerance, double guard_band) {
   std::vector<double> out;
   auto refine = [&](const Edge& e) {
     if (!e.closed() || *e.width() <= tolerance) return;
@@ -114,6 +130,12 @@ std::vector<double> refinement_points(const Window& window, double tolerance) {
   for (const StickInterval& iv : window.intervals) {
     refine(iv.lower);
     refine(iv.upper);
+    for (const Edge* e : {&iv.lower, &iv.upper}) {
+      if (!(guard_band > 0.0) || !e->closed()) continue;
+      const double a = std::min(*e->rebound_velocity, e->stick_velocity);
+      const double b = std::max(*e->rebound_velocity, e->stick_velocity);
+      guard_band_points(window, a, b, guard_band, tolerance, out);
+    }
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());

@@ -15,8 +15,8 @@
 // maximum velocity  = estimate of the upper edge of the last interval;
 // each estimate is the bracket's midpoint (error at most half its width) and
 // is empty when the edge is open. A stick island narrower than the sampling
-// and lying between two rebound samples cannot be seen; refinement only
-// sharpens edges the samples already show.
+// and lying between two rebound samples cannot be seen unless refinement
+// samples the guard band around each edge (refinement_points).
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
@@ -58,6 +58,7 @@ struct Window {
   std::vector<Sample> unclassified;  // every sample that is neither
   double min_velocity = 0.0;         // swept range, m/s
   double max_velocity = 0.0;
+  std::vector<double> sampled;  // every sample's velocity, ascending, m/s
 };
 
 // The window of one parameter set. `samples` need not be sorted.
@@ -66,9 +67,15 @@ Window compute_window(std::vector<Sample> samples);
 // Velocities to run next to sharpen the window's closed edges: for each edge
 // whose bracket is wider than `tolerance` (m/s), the midpoint of the largest
 // gap between the bracket's ends and the unclassified samples inside it
-// (so an unstable job at a midpoint does not stall the bisection). Empty
-// when every closed edge is within tolerance.
-std::vector<double> refinement_points(const Window& window, double tolerance);
+// (so an unstable job at a midpoint does not stall the bisection). With a
+// `guard_band` (m/s), also the midpoint of every gap wider than `tolerance`
+// between samples within guard_band of a closed edge's bracket: stick and
+// rebound alternate near an edge (an island narrower than the grid hides
+// between two samples of the same verdict), so the band around each edge is
+// sampled to the tolerance too, and an island found there becomes an
+// interval of its own. Empty when nothing is left to sample.
+std::vector<double> refinement_points(const Window& window, double tolerance,
+                                      double guard_band = 0.0);
 
 nlohmann::json to_json(const Sample& s);
 nlohmann::json to_json(const Edge& e);

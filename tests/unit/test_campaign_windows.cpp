@@ -183,4 +183,39 @@ TEST(campaign_windows, refinement_converges_to_a_known_edge) {
   EXPECT_EQ(extra, static_cast<int>(std::ceil(std::log2(100.0 / tol))));
 }
 
+// A map like the FE Al/Al impacts near their critical velocity: stick from
+// 300 m/s except a rebound island [320, 335), and a stick island [262, 274)
+// below the edge. Bisection alone finds one edge near 300 m/s and neither
+// island; a guard band of 50 m/s sampled to the 5 m/s tolerance finds both,
+// each as a window interval of its own, and the critical velocity moves to
+// the stick island's lower edge.
+TEST(campaign_windows, guard_band_finds_islands_next_to_an_edge) {
+  auto truth = [](double v) {
+    Sample s;
+    s.velocity = v;
+    const bool stick = (v >= 300.0 && !(v >= 320.0 && v < 335.0)) || (v >= 262.0 && v < 274.0);
+    s.verdict = stick ? Verdict::stick : Verdict::rebound;
+    return s;
+  };
+  auto drive = [&](double band) {
+    std::vector<Sample> samples;
+    for (double v = 100.0; v <= 1000.0; v += 100.0) samples.push_back(truth(v));
+    for (int round = 0; round < 50; ++round) {
+      const std::vector<double> next = refinement_points(compute_window(samples), 5.0, band);
+      if (next.empty()) break;
+      for (double v : next) samples.push_back(truth(v));
+    }
+    return compute_window(samples);
+  };
+  const Window plain = drive(0.0);
+  ASSERT_EQ(plain.intervals.size(), 1u);
+  EXPECT_NEAR(*plain.critical_velocity, 300.0, 5.0);
+  const Window guarded = drive(50.0);
+  ASSERT_EQ(guarded.intervals.size(), 3u);
+  EXPECT_NEAR(*guarded.critical_velocity, 262.0, 5.0);
+  EXPECT_NEAR(*guarded.intervals[0].upper.estimate(), 274.0, 5.0);
+  EXPECT_NEAR(*guarded.intervals[1].upper.estimate(), 320.0, 5.0);
+  EXPECT_NEAR(*guarded.intervals[2].lower.estimate(), 335.0, 5.0);
+}
+
 }  // namespace
