@@ -871,7 +871,8 @@ namespace {
 TEST(hourglass_stiffness, booked_work_equals_the_stored_energy_change) {
   const double kappa = 3.0e4, dt = 1e-9;  // N/m, s
   const Mat3 R = Eigen::AngleAxisd(0.01, Vec3(0.3, 0.5, 0.8).normalized()).toRotationMatrix();
-  std::array<Vec3, 4> Q{};
+  // Eigen leaves a default-constructed Vec3 uninitialised, even in Q{}.
+  std::array<Vec3, 4> Q{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
   double work = 0.0;
   for (int step = 0; step < 200; ++step) {
     const double s = std::sin(0.07 * step);
