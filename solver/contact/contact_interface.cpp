@@ -410,9 +410,9 @@ double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x)
   return std::min(own, quad_area({x[ids[0]], x[ids[1]], x[ids[2]], x[ids[3]]}));
 }
 
-// The interface state of slave node k's side: the yield ratio and damage of
-// its live elements, weighted by their volume (a node-level sample of the
-// fields that average_interface then averages over the interface length).
+// The state of slave node k's side read from its own live elements,
+// weighted by their volume: the fallback of average_around where no
+// material point lies within averaging_length (interface_states).
 InterfaceSideState ContactInterface::slave_side_state(const FeBody& slave, int k) const {
   double w_sum = 0.0, ratio = 0.0, damage = 0.0, flow = 0.0;
   for (int j = slave_elem_offsets_[k]; j < slave_elem_offsets_[k + 1]; ++j) {
