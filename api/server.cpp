@@ -623,7 +623,23 @@ struct Server::Impl {
       return;
     }
     doc["windows"] = campaign::window_rows(windows);
+    doc["ladders"] = ladders_json(windows);
     reply_json(req, res, doc);
+  }
+
+  // The resolution ladders of the windows, campaign by campaign (each with
+  // its own job costs).
+  json ladders_json(const std::vector<campaign::WindowRecord>& windows) {
+    std::map<std::int64_t, std::vector<campaign::WindowRecord>> by_campaign;
+    for (const campaign::WindowRecord& w : windows) by_campaign[w.campaign_id].push_back(w);
+    json out = json::array();
+    for (const auto& [id, list] : by_campaign) {
+      for (const campaign::Ladder& l :
+           campaign::resolution_ladders(list, campaign::cost_by_parameter_set(store, id))) {
+        out.push_back(campaign::to_json(l));
+      }
+    }
+    return out;
   }
 
   json job_row(const campaign::CampaignJobRow& r) {

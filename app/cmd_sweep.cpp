@@ -21,6 +21,7 @@
 #include "app/commands.hpp"
 #include "app/window_table.hpp"
 #include "campaign/manager.hpp"
+#include "campaign/queries.hpp"
 #include "solver/input/schema.hpp"
 
 namespace splat::app {
@@ -129,6 +130,9 @@ int run_sweep_command(const SweepOptions& o) {
     std::printf("%s\n", windows_json(r.windows).dump(2).c_str());
   } else {
     print_windows_table(stdout, r.windows);
+    print_ladders_table(stdout,
+                        campaign::resolution_ladders(
+                            r.windows, campaign::cost_by_parameter_set(store, r.campaign_id)));
   }
   return r.state == campaign::CampaignState::finished ? 0 : 3;
 }

@@ -1,10 +1,14 @@
-// splat windows --db FILE [--campaign ID] [--format table|json|csv]
+// splat windows --db FILE [--campaign ID]
+//               [--format table|json|csv|ladders|ladders-csv]
 // Prints the deposition windows stored for a campaign (default: the latest):
 // per parameter set the critical and maximum velocity with the bracket of
 // each edge, every sticking interval, and the jobs that are neither stick
 // nor rebound. JSON rows carry `params`, `critical_velocity`,
 // `maximum_velocity` (null where the window does not close within the swept
-// range), `critical_bracket`, `maximum_bracket` and `intervals`.
+// range), `critical_bracket`, `maximum_bracket` and `intervals`. Parameter
+// sets that differ only in a resolution field form a ladder
+// (campaign/ladders.hpp): the table lists it after the windows, `ladders`
+// prints it as JSON and `ladders-csv` as CSV.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -13,6 +17,7 @@
 #include "app/commands.hpp"
 #include "app/window_table.hpp"
 #include "campaign/manager.hpp"
+#include "campaign/queries.hpp"
 #include "solver/input/schema.hpp"
 
 namespace splat::app {
@@ -40,7 +45,15 @@ int run_windows(const WindowsOptions& o) {
         {"--campaign", "no campaign " + std::to_string(id) + " in the store"}});
   std::vector<campaign::WindowRecord> windows = store.windows(id);
   if (windows.empty()) windows = campaign::compute_windows(store, id);  // e.g. a killed sweep
-  if (o.format == "json") {
+  const std::vector<campaign::Ladder> ladders =
+      campaign::resolution_ladders(windows, campaign::cost_by_parameter_set(store, id));
+  if (o.format == "ladders") {
+    nlohmann::json doc = nlohmann::json::array();
+    for (const campaign::Ladder& l : ladders) doc.push_back(campaign::to_json(l));
+    std::printf("%s\n", doc.dump(2).c_str());
+  } else if (o.format == "ladders-csv") {
+    std::fputs(campaign::ladders_csv(ladders).c_str(), stdout);
+  } else if (o.format == "json") {
     std::printf("%s\n", windows_json(windows).dump(2).c_str());
   } else if (o.format == "csv") {
     print_windows_csv(stdout, windows);
@@ -48,6 +61,7 @@ int run_windows(const WindowsOptions& o) {
     std::printf("campaign %lld '%s' (%s): %s\n", static_cast<long long>(id), c->name.c_str(),
                 campaign::to_string(c->state), counts_text(store.job_counts(id)).c_str());
     print_windows_table(stdout, windows);
+    print_ladders_table(stdout, ladders);
   }
   return 0;
 }
@@ -59,8 +73,8 @@ void register_windows(CLI::App& app, CommandTable& commands) {
   CLI::App* sub = app.add_subcommand("windows", "Print the deposition windows of a campaign");
   sub->add_option("--db", o->db, "SQLite store")->capture_default_str();
   sub->add_option("--campaign", o->campaign, "Campaign id (default: the latest)");
-  sub->add_option("--format", o->format, "table, json or csv")
-      ->check(CLI::IsMember({"table", "json", "csv"}))
+  sub->add_option("--format", o->format, "table, json, csv, ladders (JSON) or ladders-csv")
+      ->check(CLI::IsMember({"table", "json", "csv", "ladders", "ladders-csv"}))
       ->capture_default_str();
   commands.emplace_back(sub, [o] { return run_windows(*o); });
 }

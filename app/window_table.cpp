@@ -77,6 +77,40 @@ void print_windows_csv(std::FILE* out, const std::vector<campaign::WindowRecord>
   std::fputs(campaign::window_rows_csv(windows).c_str(), out);
 }
 
+namespace {
+
+std::string level_text(const campaign::LevelEdge& e) {
+  if (!e.estimate) return "open";
+  return number(json(*e.estimate)) + " +- " + number(json(e.half_width.value_or(0.0)));
+}
+
+std::string ladder_edge_text(const campaign::LadderEdge& e) {
+  if (!e.value) return "open at some level (no value)";
+  std::string s = number(json(*e.value)) + " +- " + number(json(e.error.value_or(0.0))) + " (" +
+                  to_string(e.status);
+  if (e.order) s += ", observed order " + number(json(*e.order), "%.2f");
+  return s + ")";
+}
+
+}  // namespace
+
+void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& ladders) {
+  for (const campaign::Ladder& l : ladders) {
+    std::string params = l.params.dump();
+    if (params == "{}") params = "(base scene)";
+    std::fprintf(out, "\nresolution ladder %s, parameters %s\n", l.pointer.c_str(), params.c_str());
+    std::fprintf(out, "  %-8s %-24s %-24s %6s %10s\n", "level", "critical m/s", "maximum m/s",
+                 "jobs", "job s");
+    for (std::size_t i = 0; i < l.levels.size(); ++i) {
+      std::fprintf(out, "  %-8s %-24s %-24s %6d %10.1f\n", number(json(l.levels[i])).c_str(),
+                   level_text(l.critical.levels[i]).c_str(),
+                   level_text(l.maximum.levels[i]).c_str(), l.cost[i].jobs, l.cost[i].job_seconds);
+    }
+    std::fprintf(out, "  critical velocity %s\n", ladder_edge_text(l.critical).c_str());
+    std::fprintf(out, "  maximum velocity  %s\n", ladder_edge_text(l.maximum).c_str());
+  }
+}
+
 std::string counts_text(const campaign::JobCounts& c) {
   std::string s = std::to_string(c.total()) + " jobs:";
   bool first = true;

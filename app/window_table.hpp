@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "campaign/ladders.hpp"
 #include "campaign/store.hpp"
 
 namespace splat::app {
@@ -18,6 +19,11 @@ nlohmann::json windows_json(const std::vector<campaign::WindowRecord>& windows);
 
 void print_windows_table(std::FILE* out, const std::vector<campaign::WindowRecord>& windows);
 void print_windows_csv(std::FILE* out, const std::vector<campaign::WindowRecord>& windows);
+
+// The resolution ladders (campaign/ladders.hpp): per ladder, each level's
+// edges and cost, then each edge's value, error and status. Nothing when the
+// windows hold no ladder.
+void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& ladders);
 
 // "12 jobs: 10 succeeded, 1 failed, 1 timed-out"
 std::string counts_text(const campaign::JobCounts& c);

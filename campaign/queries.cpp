@@ -61,6 +61,16 @@ CampaignTiming campaign_timing(Store& store, std::int64_t campaign_id) {
   return t;
 }
 
+std::map<std::string, LevelCost> cost_by_parameter_set(Store& store, std::int64_t campaign_id) {
+  Statement s = store.reader().prepare(
+      "SELECT p.params_key, COUNT(*), TOTAL(j.wall_seconds) FROM campaign_points p "
+      "JOIN jobs j ON j.hash = p.job_hash WHERE p.campaign_id = ? GROUP BY p.params_key");
+  s.bind(1, campaign_id);
+  std::map<std::string, LevelCost> out;
+  while (s.step()) out[s.text(0)] = {static_cast<int>(s.int64(1)), s.real(2)};
+  return out;
+}
+
 JobCounts all_job_counts(Store& store) {
   Statement s = store.reader().prepare("SELECT state, COUNT(*) FROM jobs GROUP BY state");
   return read_job_counts(s);

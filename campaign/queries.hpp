@@ -5,10 +5,12 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "campaign/ladders.hpp"
 #include "campaign/store.hpp"
 
 namespace splat::campaign {
@@ -44,6 +46,10 @@ struct CampaignTiming {
   double wall_seconds = 0.0;  // their summed wall time, s
 };
 CampaignTiming campaign_timing(Store& store, std::int64_t campaign_id);
+
+// Per parameter set (params_key) of a campaign: its points and the summed
+// wall time of their jobs (a job shared by two points counts twice).
+std::map<std::string, LevelCost> cost_by_parameter_set(Store& store, std::int64_t campaign_id);
 
 // Store-wide: jobs by state, and the wall times of every finished job (s).
 JobCounts all_job_counts(Store& store);

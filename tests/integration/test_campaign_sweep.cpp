@@ -171,6 +171,47 @@ TEST(campaign_sweep, impact_jobs_classify_like_two_mass_jobs) {
   EXPECT_LT(rows[0].at("critical_velocity").get<double>(), 500.0);
 }
 
+// The same campaign at two resolutions: `splat windows` reads the two
+// parameter sets that differ only in elements_across as one ladder, whose
+// critical velocity is the finer level's with the move between the levels
+// as its error (campaign/ladders.hpp).
+TEST(campaign_sweep, a_resolution_field_gives_a_ladder) {
+  TempDir t;
+  const fs::path spec = t.path / "ladder.json";
+  const json field = {
+      {"pointer", "/particle_impact/particle/elements_across"}, {"unit", "-"}, {"values", {8, 12}}};
+  std::ofstream(spec) << json{{"name", "ladder"},
+                              {"base_scene", (k_source / "scenes/impact_al_al.json").string()},
+                              {"velocity", {{"values", {200, 500}}}},
+                              {"fields", {field}},
+                              {"job", {{"time_limit", 120}}}}
+                             .dump(2);
+  const std::string db = (t.path / "c.db").string();
+  auto o = run_splat("sweep " + spec.string() + " --db " + db + " --workers 2");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("resolution ladder /particle_impact/particle/elements_across"),
+            std::string::npos)
+      << o.stdout_text;
+  o = run_splat("windows --db " + db + " --format ladders");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const json ladders = json::parse(o.stdout_text);
+  ASSERT_EQ(ladders.size(), 1u) << o.stdout_text;
+  const json& l = ladders[0];
+  EXPECT_EQ(l.at("levels"), json({8, 12}));
+  EXPECT_EQ(l.at("cost")[1].at("jobs"), 2);
+  const json& c = l.at("critical");
+  ASSERT_EQ(c.at("status"), "not-converged") << l.dump(2);
+  const double f8 = c.at("levels")[0].at("estimate").get<double>();
+  const double f12 = c.at("levels")[1].at("estimate").get<double>();
+  EXPECT_DOUBLE_EQ(c.at("value").get<double>(), f12);
+  EXPECT_DOUBLE_EQ(c.at("error").get<double>(),
+                   std::abs(f12 - f8) + c.at("levels")[1].at("half_width").get<double>());
+  o = run_splat("windows --db " + db + " --format ladders-csv");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_EQ(o.stdout_text.rfind("campaign_id,params,pointer,level,jobs,job_seconds [s]", 0), 0u)
+      << o.stdout_text;
+}
+
 // `splat sweep` as users run it, killed with SIGKILL in the middle and run
 // again: the second run finishes the campaign, reusing what was stored.
 TEST(campaign_sweep, sweep_command_survives_kill_minus_nine) {

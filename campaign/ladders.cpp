@@ -1,0 +1,197 @@
+#include "campaign/ladders.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "solver/core/richardson.hpp"
+
+namespace splat::campaign {
+
+using nlohmann::json;
+
+namespace {
+
+// Safety factor of the grid convergence index for a three-level study.
+constexpr double k_gci_safety = 1.25;
+// Largest relative difference of two refinement ratios still called constant.
+constexpr double k_ratio_tolerance = 0.01;
+
+LevelEdge level_edge(const json& bracket) {
+  if (bracket.is_null() || !bracket.at("estimate").is_number()) return {};
+  return {bracket.at("estimate").get<double>(), 0.5 * bracket.at("width").get<double>()};
+}
+
+std::optional<double> extrapolated(const std::vector<double>& levels,
+                                   const std::vector<double>& f) {
+  const std::size_t n = levels.size();
+  if (n < 3 || !(levels[n - 3] > 0.0)) return std::nullopt;
+  const double r1 = levels[n - 2] / levels[n - 3], r2 = levels[n - 1] / levels[n - 2];
+  if (std::abs(r1 - r2) > k_ratio_tolerance * r2) return std::nullopt;
+  const auto est = richardson(f[n - 3], f[n - 2], f[n - 1], r2);
+  if (!est || !(est->order > 0.0)) return std::nullopt;
+  return est->estimate;
+}
+
+// Richardson's observed order for the same three levels (only called after
+// extrapolated() succeeded).
+double observed_order(const std::vector<double>& levels, const std::vector<double>& f) {
+  const std::size_t n = levels.size();
+  return richardson(f[n - 3], f[n - 2], f[n - 1], levels[n - 1] / levels[n - 2])->order;
+}
+
+json optional_number(const std::optional<double>& x) {
+  return x ? json(*x) : json(nullptr);
+}
+
+json edge_json(const LadderEdge& e) {
+  json levels = json::array();
+  for (const LevelEdge& l : e.levels) {
+    levels.push_back(
+        {{"estimate", optional_number(l.estimate)}, {"half_width", optional_number(l.half_width)}});
+  }
+  return {{"status", to_string(e.status)},
+          {"value", optional_number(e.value)},
+          {"error", optional_number(e.error)},
+          {"order", optional_number(e.order)},
+          {"levels", levels}};
+}
+
+std::string number(const std::optional<double>& x) {
+  if (!x) return {};
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", *x);
+  return buf;
+}
+
+std::string quoted(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+}  // namespace
+
+const char* to_string(LadderStatus s) {
+  switch (s) {
+    case LadderStatus::extrapolated:
+      return "extrapolated";
+    case LadderStatus::not_converged:
+      return "not-converged";
+    case LadderStatus::single_level:
+      return "single-level";
+    case LadderStatus::open:
+      return "open";
+  }
+  return "open";
+}
+
+LadderEdge ladder_edge(const std::vector<double>& levels, const std::vector<LevelEdge>& edges) {
+  LadderEdge out;
+  out.levels = edges;
+  const std::size_t n = edges.size();
+  if (n == 0 || n != levels.size()) return out;
+  std::vector<double> f;
+  for (const LevelEdge& e : edges) {
+    if (!e.estimate) return out;  // open at some level
+    f.push_back(*e.estimate);
+  }
+  const double w = edges.back().half_width.value_or(0.0);
+  if (n == 1) {
+    out.status = LadderStatus::single_level;
+    out.value = f[0];
+    out.error = w;
+    return out;
+  }
+  if (const auto star = extrapolated(levels, f)) {
+    out.status = LadderStatus::extrapolated;
+    out.value = *star;
+    out.error = k_gci_safety * std::abs(*star - f[n - 1]) + w;
+    out.order = observed_order(levels, f);
+    return out;
+  }
+  out.status = LadderStatus::not_converged;
+  out.value = f[n - 1];
+  out.error = std::abs(f[n - 1] - f[n - 2]) + w;
+  return out;
+}
+
+std::vector<Ladder> resolution_ladders(const std::vector<WindowRecord>& windows,
+                                       const std::map<std::string, LevelCost>& cost) {
+  struct Member {
+    double level;
+    const WindowRecord* record;
+  };
+  // (campaign, pointer, params without it) -> members
+  std::map<std::tuple<std::int64_t, std::string, std::string>, std::vector<Member>> groups;
+  for (const WindowRecord& w : windows) {
+    json params = json::parse(w.params);
+    for (const std::string& p : k_resolution_pointers) {
+      if (!params.is_object() || !params.contains(p) || !params.at(p).is_number()) continue;
+      const double level = params.at(p).get<double>();
+      params.erase(p);
+      groups[{w.campaign_id, p, params.dump()}].push_back({level, &w});
+      break;
+    }
+  }
+  std::vector<Ladder> out;
+  for (auto& [key, members] : groups) {
+    if (members.size() < 2) continue;
+    std::sort(members.begin(), members.end(),
+              [](const Member& a, const Member& b) { return a.level < b.level; });
+    Ladder l;
+    l.campaign_id = std::get<0>(key);
+    l.pointer = std::get<1>(key);
+    l.params = json::parse(std::get<2>(key));
+    std::vector<LevelEdge> lower, upper;
+    for (const Member& m : members) {
+      l.levels.push_back(m.level);
+      const auto c = cost.find(m.record->params_key);
+      l.cost.push_back(c == cost.end() ? LevelCost{} : c->second);
+      const json doc = json::parse(m.record->window);
+      lower.push_back(level_edge(doc.at("critical_bracket")));
+      upper.push_back(level_edge(doc.at("maximum_bracket")));
+    }
+    l.critical = ladder_edge(l.levels, lower);
+    l.maximum = ladder_edge(l.levels, upper);
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
+json to_json(const Ladder& l) {
+  json cost = json::array();
+  for (const LevelCost& c : l.cost)
+    cost.push_back({{"jobs", c.jobs}, {"job_seconds", c.job_seconds}});
+  return {{"campaign_id", l.campaign_id},
+          {"pointer", l.pointer},
+          {"params", l.params},
+          {"levels", l.levels},
+          {"cost", cost},
+          {"critical", edge_json(l.critical)},
+          {"maximum", edge_json(l.maximum)}};
+}
+
+std::string ladders_csv(const std::vector<Ladder>& ladders) {
+  std::string out =
+      "campaign_id,params,pointer,level,jobs,job_seconds [s],critical_level [m/s],"
+      "critical_half_width [m/s],maximum_level [m/s],maximum_half_width [m/s],"
+      "critical_status,critical_value [m/s],critical_error [m/s],maximum_status,"
+      "maximum_value [m/s],maximum_error [m/s]\n";
+  for (const Ladder& l : ladders) {
+    for (std::size_t i = 0; i < l.levels.size(); ++i) {
+      const LevelEdge& lo = l.critical.levels[i];
+      const LevelEdge& hi = l.maximum.levels[i];
+      out += std::to_string(l.campaign_id) + "," + quoted(l.params.dump()) + "," + l.pointer + "," +
+             number(l.levels[i]) + "," + std::to_string(l.cost[i].jobs) + "," +
+             number(l.cost[i].job_seconds) + "," + number(lo.estimate) + "," +
+             number(lo.half_width) + "," + number(hi.estimate) + "," + number(hi.half_width) + "," +
+             to_string(l.critical.status) + "," + number(l.critical.value) + "," +
+             number(l.critical.error) + "," + to_string(l.maximum.status) + "," +
+             number(l.maximum.value) + "," + number(l.maximum.error) + "\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace splat::campaign

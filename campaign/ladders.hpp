@@ -1,0 +1,85 @@
+// Resolution ladders: a campaign's windows at several resolutions of the same
+// parameter set, read together so each edge comes with its error from
+// resolution. Pure functions over WindowRecords; no store, no processes.
+//
+// A ladder is a group of parameter sets that differ only in the value of one
+// resolution field (k_resolution_pointers, e.g. elements_across 8, 12, 16).
+// Per level it lists each edge's bracket midpoint and half-width, and the
+// cost of the level. Each edge then gets a value and an error:
+// - extrapolated: the three finest levels at a constant ratio r (to 1 %)
+//   converge monotonically (Richardson, solver/core/richardson.hpp, observed
+//   order p > 0); value f*, error = 1.25 |f* - f_finest| (Roache's grid
+//   convergence index with safety factor 1.25, "Verification and Validation
+//   in Computational Science and Engineering", 1998, ch. 5) plus the finest
+//   bracket's half-width;
+// - not-converged: otherwise (two levels, ratios not constant, edges that
+//   move back and forth or apart); value the finest level's, error the move
+//   between the finest two plus the finest bracket's half-width;
+// - single-level: one level only; value its midpoint, error its half-width;
+// - open: the edge is open (or missing) at some level; no value.
+#pragma once
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "campaign/store.hpp"
+
+namespace splat::campaign {
+
+// Fields read as resolution levels (JSON pointers of `fields` axes).
+inline const std::vector<std::string> k_resolution_pointers = {
+    "/particle_impact/particle/elements_across"};
+
+enum class LadderStatus { extrapolated, not_converged, single_level, open };
+
+const char* to_string(LadderStatus s);
+
+// One edge at one level: bracket midpoint and half-width, m/s; empty = open.
+struct LevelEdge {
+  std::optional<double> estimate;
+  std::optional<double> half_width;
+};
+
+struct LadderEdge {
+  std::vector<LevelEdge> levels;  // one per ladder level, coarse to fine
+  LadderStatus status = LadderStatus::open;
+  std::optional<double> value;  // m/s
+  std::optional<double> error;  // m/s
+  std::optional<double> order;  // observed order of convergence, - (extrapolated only)
+};
+
+// Jobs of one level and the sum of their wall times.
+struct LevelCost {
+  int jobs = 0;
+  double job_seconds = 0.0;  // s
+};
+
+struct Ladder {
+  std::int64_t campaign_id = 0;
+  std::string pointer;         // the resolution field
+  nlohmann::json params;       // the parameter set without the resolution field
+  std::vector<double> levels;  // resolution values, coarse to fine (ascending)
+  std::vector<LevelCost> cost;
+  LadderEdge critical;
+  LadderEdge maximum;
+};
+
+// Estimate of one edge from its levels (see the header comment).
+LadderEdge ladder_edge(const std::vector<double>& levels, const std::vector<LevelEdge>& edges);
+
+// The ladders of a set of windows: one per group of parameter sets that differ
+// only in a resolution field and have at least two levels. `cost` maps a
+// parameter set's params_key to its cost (missing: zero).
+std::vector<Ladder> resolution_ladders(const std::vector<WindowRecord>& windows,
+                                       const std::map<std::string, LevelCost>& cost = {});
+
+nlohmann::json to_json(const Ladder& l);
+
+// One CSV line per ladder and level, with the edge estimates of the ladder on
+// every line; units in the header.
+std::string ladders_csv(const std::vector<Ladder>& ladders);
+
+}  // namespace splat::campaign

@@ -1,0 +1,128 @@
+// Resolution ladders (campaign/ladders.hpp): windows of one parameter set at
+// several resolutions read together; each edge gets a value and an error
+// from resolution, checked against edges built from a known convergence law.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "campaign/ladders.hpp"
+#include "campaign/windows.hpp"
+
+namespace {
+
+using namespace splat::campaign;
+using nlohmann::json;
+
+const std::string k_across = "/particle_impact/particle/elements_across";
+
+// Edges of exact midpoint f and half-width w at each level.
+std::vector<LevelEdge> edges(const std::vector<double>& f, double w) {
+  std::vector<LevelEdge> out;
+  for (double x : f) out.push_back({x, w});
+  return out;
+}
+
+// A stored window whose critical velocity is bracketed by a rebound at
+// `edge` - 5 and a stick at `edge` + 5 (m/s), on a 10 m/s grid 100-1000.
+WindowRecord record(std::int64_t campaign, const json& params, double edge) {
+  std::vector<Sample> samples;
+  for (double v = edge - 95.0; v <= edge + 95.0; v += 10.0) {
+    samples.push_back(
+        {v, v < edge ? Verdict::rebound : Verdict::stick, v < edge ? "rebound" : "stick"});
+  }
+  const Window w = compute_window(samples);
+  json doc = to_json(w);
+  doc["params"] = params;
+  return {campaign,           params.dump(), params.dump(), w.critical_velocity,
+          w.maximum_velocity, doc.dump()};
+}
+
+}  // namespace
+
+// f(n) = f* - C / n^2 at n = 8, 16, 32 (ratio 2, order 2): the estimate is f*
+// and the error 1.25 |f* - f(32)| plus the finest half-width.
+TEST(campaign_ladders, second_order_edges_extrapolate_to_the_limit) {
+  const double limit = 800.0, C = 12800.0;
+  std::vector<double> f;
+  for (double n : {8.0, 16.0, 32.0}) f.push_back(limit - C / (n * n));
+  const LadderEdge e = ladder_edge({8, 16, 32}, edges(f, 5.0));
+  ASSERT_EQ(e.status, LadderStatus::extrapolated);
+  EXPECT_NEAR(*e.value, limit, 1e-9);
+  EXPECT_NEAR(*e.order, 2.0, 1e-9);
+  EXPECT_NEAR(*e.error, 1.25 * (limit - f[2]) + 5.0, 1e-9);
+}
+
+// Edges that move back and forth (the FE Al/Al band 290 / 310 / 290 m/s)
+// are not extrapolated: value the finest, error the last move plus the
+// finest half-width.
+TEST(campaign_ladders, edges_that_alternate_are_not_converged) {
+  const LadderEdge e = ladder_edge({8, 16, 32}, edges({290, 310, 290}, 5.0));
+  EXPECT_EQ(e.status, LadderStatus::not_converged);
+  EXPECT_DOUBLE_EQ(*e.value, 290.0);
+  EXPECT_DOUBLE_EQ(*e.error, 25.0);
+  EXPECT_FALSE(e.order.has_value());
+}
+
+// Converging edges at ratios 1.5 and 1.33 (8, 12, 16): no constant ratio, so
+// no Richardson estimate; two levels are never extrapolated either.
+TEST(campaign_ladders, unequal_ratios_and_two_levels_give_the_spread) {
+  const LadderEdge a = ladder_edge({8, 12, 16}, edges({600, 700, 740}, 5.0));
+  EXPECT_EQ(a.status, LadderStatus::not_converged);
+  EXPECT_DOUBLE_EQ(*a.error, 45.0);
+  const LadderEdge b = ladder_edge({8, 16}, edges({600, 700}, 12.5));
+  EXPECT_EQ(b.status, LadderStatus::not_converged);
+  EXPECT_DOUBLE_EQ(*b.value, 700.0);
+  EXPECT_DOUBLE_EQ(*b.error, 112.5);
+}
+
+// A diverging sequence (the moves grow) has a negative observed order: the
+// spread, never an extrapolation away from the data.
+TEST(campaign_ladders, diverging_edges_are_not_extrapolated) {
+  const LadderEdge e = ladder_edge({8, 16, 32}, edges({700, 680, 600}, 5.0));
+  EXPECT_EQ(e.status, LadderStatus::not_converged);
+  EXPECT_DOUBLE_EQ(*e.error, 85.0);
+}
+
+TEST(campaign_ladders, an_edge_open_at_one_level_has_no_value) {
+  std::vector<LevelEdge> e = edges({600, 700, 740}, 5.0);
+  e[1] = {};
+  const LadderEdge l = ladder_edge({8, 16, 32}, e);
+  EXPECT_EQ(l.status, LadderStatus::open);
+  EXPECT_FALSE(l.value.has_value());
+  EXPECT_FALSE(l.error.has_value());
+}
+
+// Windows group into ladders by the parameters other than the resolution
+// field; a set with one level and sets of another campaign stay apart, and
+// the levels come out coarse to fine whatever the stored order.
+TEST(campaign_ladders, windows_group_by_the_other_parameters) {
+  auto params = [](double gc, double n) { return json{{"G_c", gc}, {k_across, n}}; };
+  const std::vector<WindowRecord> w = {
+      record(1, params(30, 32), 795), record(1, params(30, 8), 605), record(1, params(30, 16), 755),
+      record(1, params(15, 8), 505), record(2, params(30, 8), 405)};
+  std::map<std::string, LevelCost> cost;
+  cost[params(30, 8).dump()] = {20, 10.0};
+  cost[params(30, 32).dump()] = {12, 400.0};
+  const std::vector<Ladder> ladders = resolution_ladders(w, cost);
+  ASSERT_EQ(ladders.size(), 1u);
+  const Ladder& l = ladders[0];
+  EXPECT_EQ(l.pointer, k_across);
+  EXPECT_EQ(l.params, json({{"G_c", 30}}));
+  EXPECT_EQ(l.levels, (std::vector<double>{8, 16, 32}));
+  EXPECT_EQ(l.cost[0].jobs, 20);
+  EXPECT_EQ(l.cost[1].jobs, 0);
+  EXPECT_DOUBLE_EQ(l.cost[2].job_seconds, 400.0);
+  // Critical edges 605, 755, 795 m/s: moves 150 then 40, order log2(3.75).
+  ASSERT_EQ(l.critical.status, LadderStatus::extrapolated);
+  EXPECT_NEAR(*l.critical.order, std::log2(150.0 / 40.0), 1e-9);
+  EXPECT_NEAR(*l.critical.value, 795.0 + 40.0 / (150.0 / 40.0 - 1.0), 1e-9);
+  EXPECT_EQ(l.maximum.status, LadderStatus::open);  // every stick reaches the range's end
+
+  const json doc = to_json(l);
+  EXPECT_EQ(doc.at("critical").at("status"), "extrapolated");
+  EXPECT_EQ(doc.at("critical").at("levels").size(), 3u);
+  const std::string csv = ladders_csv(ladders);
+  EXPECT_EQ(csv.rfind("campaign_id,params,pointer,level,jobs,job_seconds [s],", 0), 0u) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);  // header + 3 levels
+}
