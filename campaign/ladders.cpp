@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 #include "solver/core/richardson.hpp"
 
@@ -70,7 +71,118 @@ std::string quoted(const std::string& s) {
   return q + "\"";
 }
 
+struct Classified {
+  double velocity = 0.0;
+  Verdict verdict = Verdict::other;
+};
+
+std::vector<Classified> classified(const std::vector<Sample>& samples) {
+  std::vector<Classified> out;
+  for (const Sample& s : samples) {
+    if (s.verdict != Verdict::other) out.push_back({s.velocity, s.verdict});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const Classified& a, const Classified& b) { return a.velocity < b.velocity; });
+  return out;
+}
+
+// What one level knows of the next coarser one: its velocities (ascending)
+// and the velocities the fine level already ran.
+struct SeedContext {
+  std::vector<double> coarse;
+  std::set<double> fine_run;
+  std::vector<Classified> fine;
+  bool run(double v) const { return fine_run.count(v) > 0; }
+};
+
+// Seeds of one closed coarse edge with bracket [lo, hi]; `below` is the
+// verdict on its low side (rebound for a lower edge, stick for an upper one).
+std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, double band,
+                               Verdict below) {
+  std::vector<double> out;
+  for (double v : c.coarse) {
+    if (v >= lo - band && v <= hi + band && !c.run(v)) out.push_back(v);
+  }
+  if (!out.empty() || c.fine.empty()) return out;
+  const double mid = 0.5 * (lo + hi);
+  std::size_t k = 0;
+  for (std::size_t i = 1; i < c.fine.size(); ++i) {
+    if (std::abs(c.fine[i].velocity - mid) < std::abs(c.fine[k].velocity - mid)) k = i;
+  }
+  // Up from a `below` sample, down from the other, through fine samples of
+  // the same verdict until the verdict changes. Past the bracket the walk
+  // doubles its reach from the bracket's end (twice the bracket's width,
+  // then twice the distance covered): where the next fine sample lies beyond
+  // that reach, the reach is sampled (within the swept range).
+  const Verdict start = c.fine[k].verdict;
+  const bool up = start == below;
+  const double anchor = up ? hi : lo, width = hi - lo;
+  std::optional<double> next;
+  for (std::size_t j = k;;) {
+    const double reach = std::max(2.0 * std::abs(c.fine[j].velocity - anchor), 2.0 * width);
+    const double target =
+        std::clamp(up ? anchor + reach : anchor - reach, c.coarse.front(), c.coarse.back());
+    const bool last = up ? j + 1 == c.fine.size() : j == 0;
+    const std::size_t n = last ? j : (up ? j + 1 : j - 1);
+    if (last || (up ? c.fine[n].velocity > target : c.fine[n].velocity < target)) {
+      if (!c.run(target)) next = target;
+      break;
+    }
+    if (c.fine[n].verdict != start) break;  // the fine edge is bracketed
+    j = n;
+  }
+  if (next) out.push_back(*next);
+  return out;
+}
+
 }  // namespace
+
+std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::vector<Sample>& fine,
+                                double guard_band) {
+  SeedContext c;
+  for (const Sample& s : coarse) c.coarse.push_back(s.velocity);
+  std::sort(c.coarse.begin(), c.coarse.end());
+  c.coarse.erase(std::unique(c.coarse.begin(), c.coarse.end()), c.coarse.end());
+  if (c.coarse.empty()) return {};
+  for (const Sample& s : fine) c.fine_run.insert(s.velocity);
+  c.fine = classified(fine);
+  const Window w = compute_window(coarse);
+  std::set<double> out;
+  auto add = [&](const std::vector<double>& v) { out.insert(v.begin(), v.end()); };
+  auto add_end = [&](double v) {
+    if (!c.run(v)) out.insert(v);
+  };
+  if (w.intervals.empty()) {
+    add_end(c.coarse.front());
+    add_end(c.coarse.back());
+  }
+  for (const StickInterval& iv : w.intervals) {
+    for (const auto& [edge, below] :
+         {std::pair{&iv.lower, Verdict::rebound}, std::pair{&iv.upper, Verdict::stick}}) {
+      if (!edge->closed()) {
+        add_end(below == Verdict::rebound ? c.coarse.front() : c.coarse.back());
+        continue;
+      }
+      const double a = *edge->rebound_velocity, b = edge->stick_velocity;
+      add(edge_seeds(c, std::min(a, b), std::max(a, b), guard_band, below));
+    }
+  }
+  return {out.begin(), out.end()};
+}
+
+LadderStep coarse_to_fine_step(const std::vector<std::vector<Sample>>& levels, double tolerance,
+                               double guard_band) {
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    if (i > 0) {
+      std::vector<double> seeds = level_seeds(levels[i - 1], levels[i], guard_band);
+      if (!seeds.empty()) return {i, std::move(seeds)};
+    }
+    std::vector<double> points =
+        refinement_points(compute_window(levels[i]), tolerance, guard_band);
+    if (!points.empty()) return {i, std::move(points)};
+  }
+  return {};
+}
 
 const char* to_string(LadderStatus s) {
   switch (s) {

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "campaign/store.hpp"
+#include "campaign/windows.hpp"
 
 namespace splat::campaign {
 
@@ -75,6 +76,32 @@ LadderEdge ladder_edge(const std::vector<double>& levels, const std::vector<Leve
 // parameter set's params_key to its cost (missing: zero).
 std::vector<Ladder> resolution_ladders(const std::vector<WindowRecord>& windows,
                                        const std::map<std::string, LevelCost>& cost = {});
+
+// Coarse to fine: the finer levels of a ladder run only near the edges the
+// next coarser level found. `coarse` and `fine` are the samples of two
+// neighbouring levels (same parameters otherwise); the coarse velocities are
+// the candidates. For each edge of the coarse window:
+// - its bracket ends and the coarse samples within `guard_band` (m/s) of it
+//   not yet run at the fine level;
+// - once those ran: the fine sample nearest the bracket is followed through
+//   samples of its verdict away from it until the opposite verdict turns up
+//   (the fine edge); if it does not, the next coarse velocity beyond is
+//   returned (the edge moved by more than the band under refinement).
+// An open coarse edge gets the swept range's end on its side. Empty: the fine
+// level has every edge of the coarse one bracketed (bisection, guard bands
+// and islands are then refinement_points' work on the fine window).
+std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::vector<Sample>& fine,
+                                double guard_band);
+
+// What a ladder runs next: the coarsest level whose refinement is not done
+// (refinement_points of its window, or, above the coarsest, level_seeds from
+// the level below), with its velocities. Empty velocities: every level done.
+struct LadderStep {
+  std::size_t level = 0;  // index into the levels, coarse to fine
+  std::vector<double> velocities;
+};
+LadderStep coarse_to_fine_step(const std::vector<std::vector<Sample>>& levels, double tolerance,
+                               double guard_band);
 
 nlohmann::json to_json(const Ladder& l);
 

@@ -2,6 +2,7 @@
 
 #include <sched.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstring>
 #include <deque>
@@ -13,6 +14,7 @@
 #include <thread>
 
 #include "campaign/job_end.hpp"
+#include "campaign/ladders.hpp"
 #include "campaign/process.hpp"
 #include "campaign/slurm.hpp"
 
@@ -141,6 +143,53 @@ Sample classify(const PointStatus& p) {
   }
   return s;
 }
+
+namespace {
+
+using PlannedPoints = std::vector<std::pair<json, double>>;
+
+// Coarse to fine: per group of parameter sets equal but for the ladder
+// axis, the next step of its ladder (campaign/ladders.hpp).
+PlannedPoints ladder_points(const CampaignSpec& spec,
+                            std::map<std::string, std::vector<Sample>>& samples) {
+  const ParameterAxis& axis = *ladder_axis(spec);
+  std::map<std::string, std::vector<json>> groups;
+  for (const json& p : parameter_sets(spec)) {
+    json rest = p;
+    rest.erase(axis.name);
+    groups[canonical_text(rest)].push_back(p);
+  }
+  PlannedPoints out;
+  for (auto& [key, sets] : groups) {
+    std::sort(sets.begin(), sets.end(), [&](const json& a, const json& b) {
+      return a.at(axis.name).get<double>() < b.at(axis.name).get<double>();
+    });
+    std::vector<std::vector<Sample>> levels;
+    for (const json& p : sets) levels.push_back(samples[canonical_text(p)]);
+    const LadderStep step =
+        coarse_to_fine_step(levels, spec.refinement->tolerance, spec.refinement->guard_band);
+    for (double v : step.velocities) out.push_back({sets[step.level], v});
+  }
+  return out;
+}
+
+// The points refinement adds next: bisection and guard bands of every
+// window, or the ladder's next step when refinement goes coarse to fine.
+PlannedPoints next_points(const CampaignSpec& spec, const std::vector<WindowRecord>& windows,
+                          std::map<std::string, std::vector<Sample>>& samples) {
+  if (spec.refinement->coarse_to_fine && ladder_axis(spec)) return ladder_points(spec, samples);
+  PlannedPoints out;
+  for (const WindowRecord& w : windows) {
+    const Window win = compute_window(samples[w.params_key]);
+    for (double v :
+         refinement_points(win, spec.refinement->tolerance, spec.refinement->guard_band)) {
+      out.push_back({json::parse(w.params), v});
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 std::vector<WindowRecord> compute_windows(Store& store, std::int64_t campaign_id) {
   std::map<std::string, std::pair<std::string, std::vector<Sample>>> sets;
@@ -298,14 +347,10 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     std::map<std::string, std::vector<Sample>> samples;
     for (const PointStatus& p : store.points(cid))
       samples[p.point.params_key].push_back(classify(p));
-    for (const WindowRecord& w : windows) {
-      const Window win = compute_window(samples[w.params_key]);
-      for (double v :
-           refinement_points(win, spec.refinement->tolerance, spec.refinement->guard_band)) {
-        if (budget <= 0) break;
-        extra.push_back(make_job(spec, json::parse(w.params), v, resolve, version));
-        --budget;
-      }
+    for (const auto& [params, v] : next_points(spec, windows, samples)) {
+      if (budget <= 0) break;
+      extra.push_back(make_job(spec, params, v, resolve, version));
+      --budget;
     }
     if (extra.empty()) return false;
     store.add_points(cid, to_new_points(extra, "refine"), options.rerun);

@@ -1,8 +1,10 @@
 #include "campaign/spec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
+#include "campaign/ladders.hpp"
 #include "campaign/sha256.hpp"
 #include "solver/build_info.hpp"
 #include "solver/input/scene_io.hpp"
@@ -162,8 +164,14 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
 
   if (doc.contains("refinement")) {
     const json& r = doc.at("refinement");
-    s.refinement = RefinementOptions{r.at("tolerance").get<double>(),
-                                     r.value("max_extra_jobs", 100), r.value("guard_band", 0.0)};
+    s.refinement =
+        RefinementOptions{r.at("tolerance").get<double>(), r.value("max_extra_jobs", 100),
+                          r.value("guard_band", 0.0), r.value("coarse_to_fine", false)};
+    if (s.refinement->coarse_to_fine && !ladder_axis(s)) {
+      problems.push_back({"/refinement/coarse_to_fine", "needs a `fields` axis on " +
+                                                            k_resolution_pointers.front() +
+                                                            " with two or more numeric values"});
+    }
   }
   if (doc.contains("job")) {
     const json& j = doc.at("job");
@@ -182,6 +190,17 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
 
 CampaignSpec load_campaign(const std::filesystem::path& file) {
   return read_campaign(read_json_file(file), file.parent_path());
+}
+
+const ParameterAxis* ladder_axis(const CampaignSpec& spec) {
+  for (const ParameterAxis& a : spec.axes) {
+    const bool resolution = std::find(k_resolution_pointers.begin(), k_resolution_pointers.end(),
+                                      a.pointer) != k_resolution_pointers.end();
+    const bool numeric =
+        std::all_of(a.values.begin(), a.values.end(), [](const json& v) { return v.is_number(); });
+    if (a.is_field && resolution && numeric && a.values.size() >= 2) return &a;
+  }
+  return nullptr;
 }
 
 std::vector<json> parameter_sets(const CampaignSpec& spec) {
@@ -231,7 +250,14 @@ std::vector<ExpandedJob> expand(const CampaignSpec& spec, const SceneResolver& r
                                 const std::string& solver_version) {
   std::vector<ExpandedJob> jobs;
   std::set<std::pair<std::string, double>> seen;
+  const ParameterAxis* ladder =
+      spec.refinement && spec.refinement->coarse_to_fine ? ladder_axis(spec) : nullptr;
+  double coarsest = 0.0;
+  if (ladder) {
+    coarsest = std::min_element(ladder->values.begin(), ladder->values.end())->get<double>();
+  }
   for (const json& params : parameter_sets(spec)) {
+    if (ladder && params.at(ladder->name).get<double>() != coarsest) continue;
     const std::string key = canonical_text(params);
     for (double v : spec.velocities) {
       if (!seen.insert({key, v}).second) continue;

@@ -32,7 +32,8 @@ struct ParameterAxis {
 struct RefinementOptions {
   double tolerance = 0.0;  // m/s; bracket width at which an edge counts as found
   int max_extra_jobs = 100;
-  double guard_band = 0.0;  // m/s; band around each edge sampled to the tolerance (islands)
+  double guard_band = 0.0;      // m/s; band around each edge sampled to the tolerance (islands)
+  bool coarse_to_fine = false;  // finer resolution levels run near the coarser level's edges only
 };
 
 struct JobOptions {
@@ -89,12 +90,18 @@ struct ExpandedJob {
 ExpandedJob make_job(const CampaignSpec& spec, const nlohmann::json& params, double velocity,
                      const SceneResolver& resolve, const std::string& solver_version);
 
+// The axis of the spec that is a resolution ladder (a `fields` axis on a
+// resolution pointer, campaign/ladders.hpp, with two or more numeric
+// values), or none.
+const ParameterAxis* ladder_axis(const CampaignSpec& spec);
+
 // Every parameter set of the spec (product of the parameter axes), in order.
 std::vector<nlohmann::json> parameter_sets(const CampaignSpec& spec);
 
 // The full grid: parameter sets x velocities, one entry per distinct
-// (parameter set, velocity) point. Two points may share a hash (the same
-// resolved scene); the store runs such a job once and links both points to it.
+// (parameter set, velocity) point; with refinement coarse_to_fine, only the
+// coarsest level of the ladder axis (the finer ones are refinement's). Two points may share a hash
+// (the same resolved scene); the store runs such a job once and links both points to it.
 std::vector<ExpandedJob> expand(const CampaignSpec& spec, const SceneResolver& resolve,
                                 const std::string& solver_version);
 

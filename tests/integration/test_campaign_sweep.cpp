@@ -212,6 +212,39 @@ TEST(campaign_sweep, a_resolution_field_gives_a_ladder) {
       << o.stdout_text;
 }
 
+// Coarse to fine: the finer level runs near the coarse level's edge only,
+// yet brackets its own critical velocity to the tolerance.
+TEST(campaign_sweep, coarse_to_fine_runs_the_finer_level_near_the_edges) {
+  TempDir t;
+  const fs::path spec = t.path / "c2f.json";
+  const json field = {
+      {"pointer", "/particle_impact/particle/elements_across"}, {"unit", "-"}, {"values", {8, 12}}};
+  std::ofstream(spec) << json{
+      {"name", "c2f"},
+      {"base_scene", (k_source / "scenes/impact_al_al.json").string()},
+      {"velocity", {{"range", {{"from", 100}, {"to", 700}, {"step", 100}}}}},
+      {"fields", {field}},
+      {"refinement", {{"tolerance", 25}, {"coarse_to_fine", true}}},
+      {"job",
+       {{"time_limit",
+         120}}}}.dump(2);
+  const std::string db = (t.path / "c.db").string();
+  auto o = run_splat("sweep " + spec.string() + " --db " + db + " --workers 2");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  o = run_splat("windows --db " + db + " --format ladders");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const json ladders = json::parse(o.stdout_text);
+  ASSERT_EQ(ladders.size(), 1u) << o.stdout_text;
+  const json& l = ladders[0];
+  std::printf("jobs per level: %d, %d\n", l.at("cost")[0].at("jobs").get<int>(),
+              l.at("cost")[1].at("jobs").get<int>());
+  EXPECT_LT(l.at("cost")[1].at("jobs").get<int>(), l.at("cost")[0].at("jobs").get<int>());
+  for (const json& level : l.at("critical").at("levels")) {
+    ASSERT_TRUE(level.at("estimate").is_number()) << l.dump(2);
+    EXPECT_LE(level.at("half_width").get<double>(), 12.5);
+  }
+}
+
 // `splat sweep` as users run it, killed with SIGKILL in the middle and run
 // again: the second run finishes the campaign, reusing what was stored.
 TEST(campaign_sweep, sweep_command_survives_kill_minus_nine) {

@@ -126,3 +126,79 @@ TEST(campaign_ladders, windows_group_by_the_other_parameters) {
   EXPECT_EQ(csv.rfind("campaign_id,params,pointer,level,jobs,job_seconds [s],", 0), 0u) << csv;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);  // header + 3 levels
 }
+
+namespace {
+
+// A level whose particle sticks in [lower, upper) m/s.
+struct TrueWindow {
+  double lower;
+  double upper;
+  Sample at(double v) const {
+    const bool stick = v >= lower && v < upper;
+    return {v, stick ? Verdict::stick : Verdict::rebound, stick ? "stick" : "rebound"};
+  }
+};
+
+// Runs coarse_to_fine_step to the end: the coarsest level starts on the
+// grid, the finer ones empty. Returns each level's samples.
+std::vector<std::vector<Sample>> run_ladder(const std::vector<TrueWindow>& truth,
+                                            const std::vector<double>& grid, double tolerance,
+                                            double band) {
+  std::vector<std::vector<Sample>> levels(truth.size());
+  for (double v : grid) levels[0].push_back(truth[0].at(v));
+  for (int round = 0; round < 200; ++round) {
+    const LadderStep step = coarse_to_fine_step(levels, tolerance, band);
+    if (step.velocities.empty()) return levels;
+    for (double v : step.velocities) levels[step.level].push_back(truth[step.level].at(v));
+  }
+  ADD_FAILURE() << "no end after 200 rounds";
+  return levels;
+}
+
+std::vector<double> grid_200_to_1000() {
+  std::vector<double> g;
+  for (double v = 200; v <= 1000; v += 100) g.push_back(v);
+  return g;
+}
+
+}  // namespace
+
+// Edges that move with the level (300 -> 340 -> 352 m/s lower, 820 -> 790 ->
+// 784 upper): every level brackets both to the tolerance, and the finer
+// levels run far fewer jobs than the coarse one.
+TEST(campaign_ladders, coarse_to_fine_brackets_every_level_with_fewer_jobs) {
+  const std::vector<TrueWindow> truth = {{300, 820}, {340, 790}, {352, 784}};
+  const auto levels = run_ladder(truth, grid_200_to_1000(), 10.0, 0.0);
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const Window w = compute_window(levels[i]);
+    ASSERT_EQ(w.intervals.size(), 1u) << "level " << i;
+    EXPECT_NEAR(*w.critical_velocity, truth[i].lower, 10.0) << "level " << i;
+    EXPECT_NEAR(*w.maximum_velocity, truth[i].upper, 10.0) << "level " << i;
+    EXPECT_LE(*w.intervals[0].lower.width(), 10.0);
+    std::printf("  level %zu: %zu jobs\n", i, levels[i].size());
+  }
+  EXPECT_LT(levels[1].size(), levels[0].size());
+  EXPECT_LT(levels[2].size(), levels[0].size());
+}
+
+// A fine level whose edge moved by more than a grid step (300 -> 480 m/s):
+// the search walks out along the coarse velocities until it finds it.
+TEST(campaign_ladders, coarse_to_fine_follows_an_edge_that_moved_far) {
+  const std::vector<TrueWindow> truth = {{300, 2000}, {480, 2000}};
+  const auto levels = run_ladder(truth, grid_200_to_1000(), 10.0, 0.0);
+  const Window w = compute_window(levels[1]);
+  ASSERT_TRUE(w.critical_velocity.has_value());
+  EXPECT_NEAR(*w.critical_velocity, 480.0, 10.0);
+  EXPECT_FALSE(w.maximum_velocity.has_value());  // open at both levels
+}
+
+// An edge open at the coarse level (sticks to the range's end) is checked at
+// the fine level at the range's end; a fine level that loses the window
+// keeps it open, not invented.
+TEST(campaign_ladders, coarse_to_fine_checks_open_edges_at_the_range_end) {
+  const std::vector<TrueWindow> truth = {{300, 2000}, {1500, 2000}};
+  const auto levels = run_ladder(truth, grid_200_to_1000(), 10.0, 0.0);
+  const Window w = compute_window(levels[1]);
+  EXPECT_TRUE(w.intervals.empty());
+  EXPECT_EQ(w.rebounds, static_cast<int>(levels[1].size()));
+}

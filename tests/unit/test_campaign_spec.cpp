@@ -230,3 +230,36 @@ TEST(campaign_spec, base_scene_by_path_and_real_resolution) {
 }
 
 }  // namespace
+
+// Coarse to fine: the grid holds only the coarsest level of the
+// elements_across ladder (the finer levels are refinement's work); without
+// such an axis the option is an error naming it.
+TEST(campaign_spec, coarse_to_fine_grids_the_coarsest_level_only) {
+  json doc = json::parse(R"({
+    "name": "ladder",
+    "base_scene": {"name": "impact", "particle_impact": {
+      "particle": {"material": "al-thesis", "radius": 12.5e-6, "elements_across": 8},
+      "velocity": 400, "adhesion": {"G_c": 30}}},
+    "velocity": {"values": [300, 600]},
+    "G_c": {"values": [10, 30]},
+    "fields": [{"pointer": "/particle_impact/particle/elements_across", "unit": "-",
+                "values": [16, 8, 32]}],
+    "refinement": {"tolerance": 10, "coarse_to_fine": true}
+  })");
+  const CampaignSpec s = read_campaign(doc);
+  ASSERT_NE(ladder_axis(s), nullptr);
+  const std::vector<ExpandedJob> jobs = expand(s, identity, "v1");
+  ASSERT_EQ(jobs.size(), 4u);  // 2 G_c x 2 velocities, at 8 across only
+  for (const ExpandedJob& j : jobs) {
+    EXPECT_EQ(j.scene.at("/particle_impact/particle/elements_across"_json_pointer), 8);
+  }
+  doc["refinement"]["coarse_to_fine"] = false;
+  EXPECT_EQ(expand(read_campaign(doc), identity, "v1").size(), 12u);
+
+  doc["refinement"]["coarse_to_fine"] = true;
+  doc["fields"][0]["values"] = json::array({8});
+  EXPECT_TRUE(has(messages(doc),
+                  "/refinement/coarse_to_fine: needs a `fields` axis on "
+                  "/particle_impact/particle/elements_across"))
+      << messages(doc).size();
+}
