@@ -20,6 +20,7 @@ void register_windows(CLI::App& app, CommandTable& commands);
 void register_regress(CLI::App& app, CommandTable& commands);
 void register_serve(CLI::App& app, CommandTable& commands);
 void register_converge(CLI::App& app, CommandTable& commands);
+void register_window(CLI::App& app, CommandTable& commands);
 
 inline void register_all(CLI::App& app, CommandTable& commands) {
   register_materials(app, commands);
@@ -30,6 +31,7 @@ inline void register_all(CLI::App& app, CommandTable& commands) {
   register_regress(app, commands);
   register_serve(app, commands);
   register_converge(app, commands);
+  register_window(app, commands);
 }
 
 }  // namespace splat::app

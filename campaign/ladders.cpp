@@ -95,6 +95,21 @@ struct SeedContext {
   bool run(double v) const { return fine_run.count(v) > 0; }
 };
 
+// The coarse velocity nearest beyond v (above when `up`) not yet run at the
+// fine level.
+std::optional<double> next_coarse(const SeedContext& c, double v, bool up) {
+  if (up) {
+    for (double x : c.coarse) {
+      if (x > v && !c.run(x)) return x;
+    }
+  } else {
+    for (auto it = c.coarse.rbegin(); it != c.coarse.rend(); ++it) {
+      if (*it < v && !c.run(*it)) return *it;
+    }
+  }
+  return std::nullopt;
+}
+
 // Seeds of one closed coarse edge with bracket [lo, hi]; `below` is the
 // verdict on its low side (rebound for a lower edge, stick for an upper one).
 std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, double band,
@@ -161,10 +176,26 @@ std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::ve
          {std::pair{&iv.lower, Verdict::rebound}, std::pair{&iv.upper, Verdict::stick}}) {
       if (!edge->closed()) {
         add_end(below == Verdict::rebound ? c.coarse.front() : c.coarse.back());
+        add_end(edge->stick_velocity);
         continue;
       }
       const double a = *edge->rebound_velocity, b = edge->stick_velocity;
       add(edge_seeds(c, std::min(a, b), std::max(a, b), guard_band, below));
+    }
+  }
+  // The fine level's own open edges (a stick at its outermost sample on
+  // that side, inside the coarse range): the next coarse velocity beyond.
+  const Window fw = compute_window(fine);
+  if (!fw.intervals.empty()) {
+    if (!fw.intervals.front().lower.closed()) {
+      if (const auto v = next_coarse(c, fw.intervals.front().lower.stick_velocity, false)) {
+        out.insert(*v);
+      }
+    }
+    if (!fw.intervals.back().upper.closed()) {
+      if (const auto v = next_coarse(c, fw.intervals.back().upper.stick_velocity, true)) {
+        out.insert(*v);
+      }
     }
   }
   return {out.begin(), out.end()};

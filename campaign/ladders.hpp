@@ -87,7 +87,9 @@ std::vector<Ladder> resolution_ladders(const std::vector<WindowRecord>& windows,
 //   samples of its verdict away from it until the opposite verdict turns up
 //   (the fine edge); if it does not, the next coarse velocity beyond is
 //   returned (the edge moved by more than the band under refinement).
-// An open coarse edge gets the swept range's end on its side. Empty: the fine
+// An open coarse edge gets the swept range's end on its side and the coarse
+// level's outermost stick there; an edge open at the fine level while coarse
+// samples lie beyond it gets the nearest of them. Empty: the fine
 // level has every edge of the coarse one bracketed (bisection, guard bands
 // and islands are then refinement_points' work on the fine window).
 std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::vector<Sample>& fine,

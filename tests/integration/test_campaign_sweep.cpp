@@ -245,6 +245,31 @@ TEST(campaign_sweep, coarse_to_fine_runs_the_finer_level_near_the_edges) {
   }
 }
 
+// `splat window`: from a material pair to a window in one command; the same
+// command again reuses every stored job; a bad option names itself.
+TEST(campaign_sweep, window_command_from_a_material_pair) {
+  TempDir t;
+  const std::string db = (t.path / "w.db").string();
+  const std::string cmd =
+      "window --particle al-thesis --velocity 200:500:100 --workers 2 --db " + db;
+  auto o = run_splat(cmd);
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("critical velocity m/s"), std::string::npos) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("stored in " + db), std::string::npos) << o.stdout_text;
+  o = run_splat("windows --db " + db + " --format json");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const json rows = json::parse(o.stdout_text);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_TRUE(rows[0].at("critical_velocity").is_number()) << rows[0].dump(2);
+  o = run_splat(cmd);
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("0 started here"), std::string::npos) << o.stdout_text;
+  o = run_splat("window --particle al-thesis --velocity 500:200 --db " + db);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.stdout_text.find("--velocity: needs 0 < FROM < TO"), std::string::npos)
+      << o.stdout_text;
+}
+
 // `splat sweep` as users run it, killed with SIGKILL in the middle and run
 // again: the second run finishes the campaign, reusing what was stored.
 TEST(campaign_sweep, sweep_command_survives_kill_minus_nine) {

@@ -1,0 +1,136 @@
+#include "app/sweep_runner.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/window_table.hpp"
+#include "campaign/manager.hpp"
+#include "campaign/queries.hpp"
+#include "solver/input/schema.hpp"
+
+namespace splat::app {
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) {
+  g_interrupted = true;
+}
+
+void install_interrupt_handler() {
+  struct sigaction sa {};
+  sa.sa_handler = on_interrupt;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+// A progress bar on a terminal, a plain line at most once a second otherwise.
+class ProgressPrinter {
+ public:
+  ProgressPrinter() : tty_(isatty(STDERR_FILENO) != 0) {}
+  void operator()(const campaign::Progress& p) {
+    const int done = p.counts.finished();
+    const int total = p.counts.total();
+    const auto now = std::chrono::steady_clock::now();
+    if (tty_) {
+      constexpr int k_width = 30;
+      const int filled = total > 0 ? k_width * done / total : 0;
+      std::fprintf(stderr, "\r[%s%s] %d/%d jobs, %d running, %d failed, refinement +%d%s   ",
+                   std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                   std::string(static_cast<std::size_t>(k_width - filled), ' ').c_str(), done,
+                   total, p.counts.running, p.counts.failed + p.counts.timed_out, p.refinement_jobs,
+                   time_left(done, total, now).c_str());
+      std::fflush(stderr);
+      drawn_ = true;
+      return;
+    }
+    if (done == last_done_ && total == last_total_) return;
+    if (done != total && now - last_line_ < std::chrono::seconds(1)) return;
+    std::fprintf(stderr, "progress: %d/%d jobs finished (%d failed or timed out), round %d%s\n",
+                 done, total, p.counts.failed + p.counts.timed_out, p.round,
+                 time_left(done, total, now).c_str());
+    last_done_ = done;
+    last_total_ = total;
+    last_line_ = now;
+  }
+  void finish() {
+    if (drawn_) std::fputc('\n', stderr);
+  }
+
+ private:
+  // ", about 40 s left": the mean time per job finished since the start
+  // times the jobs still queued or running (refinement may add more).
+  std::string time_left(int done, int total, std::chrono::steady_clock::time_point now) {
+    if (first_done_ < 0) {
+      first_done_ = done;
+      start_ = now;
+    }
+    const int finished_here = done - first_done_;
+    if (finished_here <= 0 || done >= total) return {};
+    const double per_job = std::chrono::duration<double>(now - start_).count() / finished_here;
+    return ", about " + std::to_string(static_cast<long long>(per_job * (total - done) + 0.5)) +
+           " s left";
+  }
+
+  bool tty_;
+  int first_done_ = -1;
+  std::chrono::steady_clock::time_point start_{};
+  bool drawn_ = false;
+  int last_done_ = -1;
+  int last_total_ = -1;
+  std::chrono::steady_clock::time_point last_line_{};
+};
+
+}  // namespace
+
+int run_and_print(campaign::CampaignSpec spec, const SweepRun& o) {
+  if (!o.executor.empty()) {
+    spec.executor =
+        o.executor == "slurm" ? campaign::ExecutorKind::slurm : campaign::ExecutorKind::local;
+  }
+  if (o.workers < 1) throw InputError(std::vector<SchemaViolation>{{"--workers", "must be >= 1"}});
+  campaign::Store store(o.db);
+  install_interrupt_handler();
+  campaign::ManagerOptions mo;
+  mo.workers = o.workers;
+  mo.executor = spec.executor;
+  mo.slurm.throttle = o.slurm_throttle;
+  mo.slurm.max_array_size = o.slurm_max_array;
+  mo.slurm.sbatch_args = o.sbatch_args;
+  mo.rerun = o.rerun;
+  mo.interrupt = &g_interrupted;
+  if (!o.job_program.empty()) mo.job_program = o.job_program;
+  auto printer = std::make_shared<ProgressPrinter>();
+  mo.on_progress = [printer](const campaign::Progress& p) { (*printer)(p); };
+  std::fprintf(stderr, "campaign '%s' in %s: %zu velocities x %zu parameter sets, %d workers\n",
+               spec.name.c_str(), o.db.c_str(), spec.velocities.size(),
+               campaign::parameter_sets(spec).size(), mo.workers);
+  const campaign::SweepReport r = campaign::run_sweep(store, spec, mo);
+  printer->finish();
+  std::fprintf(stderr,
+               "campaign %lld %s: %s; %d started here, %d reused from the store, %d refinement "
+               "jobs\n",
+               static_cast<long long>(r.campaign_id), campaign::to_string(r.state),
+               counts_text(r.counts).c_str(), r.jobs_started, r.grid.jobs_reused,
+               r.refinement_jobs);
+  if (o.format == "json") {
+    std::printf("%s\n", windows_json(r.windows).dump(2).c_str());
+  } else {
+    print_windows_table(stdout, r.windows);
+    print_ladders_table(stdout,
+                        campaign::resolution_ladders(
+                            r.windows, campaign::cost_by_parameter_set(store, r.campaign_id)));
+  }
+  return r.state == campaign::CampaignState::finished ? 0 : 3;
+}
+
+}  // namespace splat::app
