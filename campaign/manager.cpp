@@ -51,6 +51,16 @@ int usable_cores() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+// A failure that may pass on another attempt: queued again while retries
+// are left.
+JobEnd transient(const JobRecord& job, const JobOptions& opts, const std::string& what) {
+  JobEnd e;
+  e.retry = job.attempts <= opts.retries;
+  e.reason = what + " on attempt " + std::to_string(job.attempts) +
+             (e.retry ? ", retrying" : ", no retries left");
+  return e;
+}
+
 }  // namespace
 
 JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::filesystem::path& dir,
@@ -70,15 +80,15 @@ JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::files
       e.reason = "cancelled while running";
       return e;
     case ProcessEnd::signaled:
-      e.reason = "killed by " + signal_name(pr.signal);
-      return e;
+      // Killed from outside (kill -9, the OOM killer) or crashed: another
+      // attempt may finish.
+      return transient(job, opts, "killed by " + signal_name(pr.signal));
     case ProcessEnd::exited:
       break;
   }
   if (pr.exit_code == k_exit_transient) {
-    e.retry = job.attempts <= opts.retries;
-    e.reason = "transient failure (exit code 75) on attempt " + std::to_string(job.attempts) +
-               (e.retry ? ", retrying" : ", no retries left") + ": " + err_tail();
+    e = transient(job, opts, "transient failure (exit code 75)");
+    e.reason += ": " + err_tail();
     return e;
   }
   if (pr.exit_code == k_exit_bad_input) {

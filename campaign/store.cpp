@@ -374,6 +374,29 @@ AddPointsStats add_points_in(Database& db, std::int64_t campaign_id,
   return stats;
 }
 
+// Every job of the campaign a stop left cancelled (grid and refinement
+// points alike) goes back to the queue, its result dropped. Returns how many.
+int requeue_cancelled_in(Database& db, std::int64_t campaign_id) {
+  Statement cancelled = db.prepare(
+      "SELECT DISTINCT j.hash FROM jobs j JOIN campaign_points p ON p.job_hash = j.hash "
+      "WHERE p.campaign_id = ? AND j.state = 'cancelled'");
+  cancelled.bind(1, campaign_id);
+  std::vector<std::string> hashes;
+  while (cancelled.step()) hashes.push_back(cancelled.text(0));
+  Statement drop_result = db.prepare("DELETE FROM results WHERE job_hash = ?");
+  Statement requeue = db.prepare(
+      "UPDATE jobs SET state = 'queued', attempts = 0, owner = '', "
+      "exit_reason = 'requeued after cancellation', "
+      "priority = MAX(priority, (SELECT priority FROM campaigns WHERE id = ?)) WHERE hash = ?");
+  for (const std::string& h : hashes) {
+    drop_result.reset();
+    drop_result.bind(1, h).run();
+    requeue.reset();
+    requeue.bind(1, campaign_id).bind(2, h).run();
+  }
+  return static_cast<int>(hashes.size());
+}
+
 }  // namespace
 
 std::int64_t Store::open_campaign(const CampaignRecord& c) {
@@ -400,6 +423,7 @@ OpenedCampaign Store::open_campaign(const CampaignRecord& c, const std::vector<N
     }
     out.id = open_campaign_in(db, c);
     out.points = add_points_in(db, out.id, points, rerun);
+    out.points.jobs_requeued += requeue_cancelled_in(db, out.id);
     if (key) {
       const double now = unix_now();
       db.prepare("DELETE FROM submissions WHERE created_at < ? OR key = ?")

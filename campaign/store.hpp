@@ -175,6 +175,8 @@ class Store {
   // An existing campaign that was cancelled or finished becomes active again.
   std::int64_t open_campaign(const CampaignRecord& c);
   // open_campaign and add_points in one transaction: a failure stores neither.
+  // Every cancelled job of the campaign (refinement points too) is queued
+  // again: a stopped campaign resumes where it stopped.
   // With a key, the key is recorded in the same transaction; a key recorded
   // with the same body hash returns its campaign and writes nothing
   // (`replayed`), one recorded with another body hash throws

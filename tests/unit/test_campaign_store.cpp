@@ -166,6 +166,25 @@ TEST(campaign_store, cancellation_marks_queued_jobs_and_the_campaign) {
   EXPECT_EQ(st.jobs_requeued, 1);
 }
 
+// A graceful stop during a refinement round cancels refinement jobs too;
+// opening the campaign again queues every one of them, not just the grid's.
+TEST(campaign_store, reopening_requeues_cancelled_refinement_jobs) {
+  TempDir t;
+  Store s(t.path / "c.db");
+  const std::vector<NewPoint> grid = {point("{}", 1.0, "h1"), point("{}", 2.0, "h2")};
+  const auto c = s.open_campaign(campaign_named("c"), grid, false).id;
+  NewPoint refine = point("{}", 1.5, "h3");
+  refine.point.origin = "refine";
+  s.add_points(c, {refine}, false);
+  EXPECT_EQ(s.cancel_queued_jobs(c, "stopped"), 3);
+  const OpenedCampaign again = s.open_campaign(campaign_named("c"), grid, false);
+  EXPECT_EQ(again.id, c);
+  EXPECT_EQ(again.points.jobs_requeued, 3);
+  EXPECT_EQ(s.job_counts(c).queued, 3);
+  EXPECT_EQ(s.job("h3")->state, JobState::queued);
+  EXPECT_EQ(s.job("h3")->exit_reason, "requeued after cancellation");
+}
+
 TEST(campaign_store, windows_round_trip) {
   TempDir t;
   Store s(t.path / "c.db");
