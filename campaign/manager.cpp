@@ -10,11 +10,13 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 #include "campaign/job_end.hpp"
 #include "campaign/process.hpp"
 #include "campaign/slurm.hpp"
+#include "solver/common/parallel.hpp"
 
 namespace splat::campaign {
 
@@ -182,6 +184,13 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   const std::string host = host_name();
   const std::string owner = this_process_owner();
   const int workers = std::max(1, options.workers);
+  const bool use_slurm = options.executor ? *options.executor == ExecutorKind::slurm
+                                          : spec.executor == ExecutorKind::slurm;
+  if (!use_slurm && spec.job.threads > splat::max_threads()) {
+    throw std::invalid_argument(
+        "/job/threads: " + std::to_string(spec.job.threads) + " asked; local jobs take at most " +
+        std::to_string(splat::max_threads()) + ", the cores of this machine");
+  }
   // More job threads than cores: waiting OpenMP threads must sleep, not spin,
   // or they take the cores the other jobs compute on (unless the user's
   // environment already chooses a wait policy).
@@ -330,8 +339,6 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   };
 
   bool cancelled = false;
-  const bool use_slurm = options.executor ? *options.executor == ExecutorKind::slurm
-                                          : spec.executor == ExecutorKind::slurm;
   if (use_slurm) {
     SlurmRound round{store, cid, spec, program, jobs_dir, options.slurm, owner, {}, {}};
     round.cancel_requested = cancel_requested;
