@@ -8,7 +8,6 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
-#include <string>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -23,11 +22,6 @@ namespace splat {
 
 Simulation::Simulation(const Scene& scene, nlohmann::json resolved_scene, SimulationOptions options)
     : impl_(std::make_unique<Impl>()) {
-  if (options.threads < 0 || options.threads > max_threads()) {
-    throw std::invalid_argument("threads: " + std::to_string(options.threads) +
-                                " asked; 0 (the default) to " + std::to_string(max_threads()) +
-                                ", the cores of this machine");
-  }
   impl_->scene = scene;
   impl_->resolved = std::move(resolved_scene);
   impl_->options = std::move(options);

@@ -31,15 +31,14 @@ namespace splat {
 
 struct SimulationOptions {
   std::filesystem::path output_dir;  // empty: no result file
-  int threads = 0;                   // 0: OpenMP default; at most max_threads() (parallel.hpp)
+  int threads = 0;                   // 0: OpenMP default
   const std::atomic<bool>* cancel = nullptr;
   bool quiet = true;  // no progress lines on stderr
 };
 
 class Simulation {
  public:
-  // Builds the model; throws InputError when the scene cannot be modelled,
-  // std::invalid_argument for threads outside 0..max_threads().
+  // Builds the model; throws InputError when the scene cannot be modelled.
   Simulation(const Scene& scene, nlohmann::json resolved_scene, SimulationOptions options);
   ~Simulation();
   Simulation(const Simulation&) = delete;
