@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "campaign/process.hpp"
 
@@ -200,8 +202,8 @@ std::string host_name() {
   return buf;
 }
 
-Store::Store(const std::filesystem::path& file) : path_(file) {
-  writer_db_ = std::make_unique<Database>(file);
+Store::Store(const std::filesystem::path& file, int busy_timeout_ms) : path_(file) {
+  writer_db_ = std::make_unique<Database>(file, busy_timeout_ms);
   configure(*writer_db_);
   migrate(*writer_db_);
   writer_ = std::thread([this] { writer_loop(); });
@@ -254,11 +256,7 @@ void Store::writer_loop() {
 }
 
 void Store::write(std::function<void(Database&)> work) {
-  std::packaged_task<void()> task([this, work = std::move(work)] {
-    Transaction tx(*writer_db_);
-    work(*writer_db_);
-    tx.commit();
-  });
+  std::packaged_task<void()> task([this, work = std::move(work)] { run_until_written(work); });
   std::future<void> done = task.get_future();
   {
     std::lock_guard lock(queue_mutex_);
@@ -266,6 +264,28 @@ void Store::write(std::function<void(Database&)> work) {
   }
   queue_cv_.notify_one();
   done.get();
+}
+
+// Another connection holding the write lock past the busy timeout is waited
+// out: the transaction (rolled back) is tried again until it commits, so a
+// busy store never drops a write such as a finished job's result.
+void Store::run_until_written(const std::function<void(Database&)>& work) {
+  for (int attempt = 1;; ++attempt) {
+    try {
+      Transaction tx(*writer_db_);
+      work(*writer_db_);
+      tx.commit();
+      return;
+    } catch (const SqliteError& e) {
+      const int code = e.code() & 0xff;
+      if (code != SQLITE_BUSY && code != SQLITE_LOCKED) throw;
+      if (attempt == 1 || attempt % 10 == 0) {
+        std::fprintf(stderr, "splat: store %s is locked by another process; waiting (%s)\n",
+                     path_.c_str(), e.what());
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
 }
 
 Database& Store::reader() {

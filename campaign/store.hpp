@@ -162,7 +162,9 @@ struct OpenedCampaign {
 class Store {
  public:
   // Opens or creates the file, applies pending migrations, starts the writer.
-  explicit Store(const std::filesystem::path& file);
+  // `busy_timeout_ms`: how long one attempt of a write waits for the write
+  // lock of another connection.
+  explicit Store(const std::filesystem::path& file, int busy_timeout_ms = 30000);
   ~Store();
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
@@ -224,13 +226,16 @@ class Store {
   std::vector<WindowRecord> windows(std::int64_t campaign_id);
 
   // Runs `work` on the writer thread inside BEGIN IMMEDIATE ... COMMIT and
-  // waits for it (exceptions come back to the caller, after a rollback).
+  // waits for it (exceptions come back to the caller, after a rollback). A
+  // store locked by another connection is waited on, however long: `work`
+  // then runs again from the start, so it must only assign its outputs.
   void write(std::function<void(Database&)> work);
   // The calling thread's read connection.
   Database& reader();
 
  private:
   void writer_loop();
+  void run_until_written(const std::function<void(Database&)>& work);
   void migrate(Database& db);
 
   std::filesystem::path path_;
