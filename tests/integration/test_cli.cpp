@@ -71,7 +71,8 @@ TEST(cli, bad_input_names_the_field_and_rule) {
   std::filesystem::remove(bad);
 }
 
-// More threads than the machine has cores once crashed in the OpenMP runtime.
+// More threads than the machine has cores are refused before the OpenMP
+// runtime is asked for them (100000 crash it).
 TEST(cli, run_threads_are_capped_by_the_machine) {
   const std::string scene =
       std::string(SPLAT_SOURCE_DIR) + "/scenes/elastic_sphere_bounce_axisym.json";
