@@ -6,6 +6,7 @@
 #include <cstring>
 #include <deque>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -62,6 +63,18 @@ JobEnd transient(const JobRecord& job, const JobOptions& opts, const std::string
              (e.retry ? ", retrying" : ", no retries left");
   return e;
 }
+
+// Runs `f` when the scope ends, also by an exception.
+class ScopeExit {
+ public:
+  explicit ScopeExit(std::function<void()> f) : f_(std::move(f)) {}
+  ~ScopeExit() { f_(); }
+  ScopeExit(const ScopeExit&) = delete;
+  ScopeExit& operator=(const ScopeExit&) = delete;
+
+ private:
+  std::function<void()> f_;
+};
 
 }  // namespace
 
@@ -296,6 +309,38 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     });
   }
 
+  bool pool_joined = false;
+  auto join_pool = [&] {
+    {
+      std::lock_guard lock(m);
+      closing = true;
+    }
+    cv.notify_all();
+    for (std::thread& t : pool) t.join();
+    pool_joined = true;
+  };
+  // A store error in this thread (a full disk) leaves run_sweep through here:
+  // the running jobs are stopped, the claimed ones not started go back to the
+  // queue while the store still takes writes, and the pool is joined before
+  // the error reaches the caller (the campaign stays `active`).
+  const ScopeExit stop_pool_on_error([&] {
+    if (pool_joined) return;
+    cancel_running = true;
+    std::deque<JobRecord> unstarted;
+    {
+      std::lock_guard lock(m);
+      unstarted.swap(work);
+    }
+    for (const JobRecord& j : unstarted) {
+      try {
+        store.requeue_job(j.hash, "requeued: its manager stopped on a store error");
+      } catch (const std::exception&) {
+        // Left `running`: the next manager of this host requeues it.
+      }
+    }
+    join_pool();
+  });
+
   Progress progress;
   progress.campaign_id = cid;
   auto report_progress = [&] {
@@ -420,12 +465,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     active -= static_cast<int>(work.size());
     work.clear();
   }
-  {
-    std::lock_guard lock(m);
-    closing = true;
-  }
-  cv.notify_all();
-  for (std::thread& t : pool) t.join();
+  join_pool();
 
   report.windows = compute_windows(store, cid);
   store.store_windows(cid, report.windows);

@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "campaign/manager.hpp"
+#include "campaign/sqlite.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -244,6 +245,30 @@ TEST(campaign_executor, a_stop_during_refinement_resumes_the_refinement_jobs) {
   for (const PointStatus& p : store.points(resumed.campaign_id)) {
     EXPECT_EQ(p.state, JobState::succeeded) << p.point.velocity << " " << p.point.origin;
   }
+}
+
+// A store that refuses a write in the middle of a run (a full disk; here a
+// trigger refuses a second job going `running`): the run ends with the
+// store's error, its workers stopped and joined, no job left running; the
+// next run finishes the campaign.
+TEST(campaign_executor, a_store_error_ends_the_run_with_the_error_and_loses_no_job) {
+  TempDir t;
+  Store store(t.path / "c.db");
+  const CampaignSpec spec =
+      fake_campaign("store-error", {json::object({{"sleep", 0.3}})}, {1, 2, 3, 4});
+  Database other(t.path / "c.db");
+  other.exec(
+      "CREATE TRIGGER full_disk BEFORE UPDATE OF state ON jobs WHEN NEW.state = 'running' "
+      "AND (SELECT COUNT(*) FROM jobs WHERE state = 'running') >= 1 "
+      "BEGIN SELECT RAISE(ABORT, 'database or disk is full'); END");
+  EXPECT_THROW(run_sweep(store, spec, fake_options(2)), SqliteError);
+  other.exec("DROP TRIGGER full_disk");
+  const std::int64_t cid = store.campaigns().at(0).id;
+  EXPECT_EQ(store.job_counts(cid).running, 0);
+
+  const SweepReport r = run_sweep(store, spec, fake_options(2));
+  EXPECT_EQ(r.state, CampaignState::finished);
+  EXPECT_EQ(r.counts.succeeded, 4);
 }
 
 TEST(campaign_executor, finished_jobs_are_reused_and_rerun_on_request) {
