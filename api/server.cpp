@@ -2,13 +2,16 @@
 
 #include <arpa/inet.h>
 #include <httplib.h>
+#include <sys/socket.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <deque>
 #include <fstream>
 #include <map>
@@ -16,6 +19,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
+#include <string_view>
 
 #include "api/runner.hpp"
 #include "campaign/queries.hpp"
@@ -23,6 +27,7 @@
 #include "campaign/store.hpp"
 #include "campaign/window_rows.hpp"
 #include "solver/build_info.hpp"
+#include "solver/common/parallel.hpp"
 #include "solver/input/material_io.hpp"
 #include "solver/input/schema.hpp"
 #include "solver/io/result_file.hpp"
@@ -52,9 +57,60 @@ bool constant_time_equal(const std::string& a, const std::string& b) {
   return diff == 0;
 }
 
+std::string token_problem(const std::string& token) {
+  const auto visible = std::count_if(token.begin(), token.end(), [](char ch) {
+    return !std::isspace(static_cast<unsigned char>(ch));
+  });
+  if (visible >= k_min_token_characters) return "";
+  return "the token has " + std::to_string(visible) + " characters that are not spaces; at least " +
+         std::to_string(k_min_token_characters) + " are needed";
+}
+
 namespace {
 
 constexpr const char* k_prefix = "/api/v1";
+
+// The offset of the first byte that does not continue valid UTF-8 (RFC 3629:
+// no overlong forms, no surrogates, nothing above U+10FFFF).
+std::optional<std::size_t> first_invalid_utf8(std::string_view s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    int more = 0;
+    unsigned lo = 0x80, hi = 0xBF;  // range of the second byte
+    if (c < 0x80) {
+      more = 0;
+    } else if (c >= 0xC2 && c <= 0xDF) {
+      more = 1;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      more = 2;
+      lo = c == 0xE0 ? 0xA0 : 0x80;
+      hi = c == 0xED ? 0x9F : 0xBF;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      more = 3;
+      lo = c == 0xF0 ? 0x90 : 0x80;
+      hi = c == 0xF4 ? 0x8F : 0xBF;
+    } else {
+      return i;
+    }
+    for (int k = 1; k <= more; ++k) {
+      if (i + std::size_t(k) >= s.size()) return i;
+      const auto b = static_cast<unsigned char>(s[i + std::size_t(k)]);
+      if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) return i;
+    }
+    i += std::size_t(more) + 1;
+  }
+  return std::nullopt;
+}
+
+bool starts_with_ignoring_case(const std::string& s, std::string_view prefix) {
+  if (s.size() < prefix.size()) return false;
+  for (std::size_t i = 0; i < prefix.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(s[i])) != prefix[i]) return false;
+  }
+  return true;
+}
+
 constexpr std::size_t k_max_history_points = 2000;
 
 // An error answered as an RFC 9457 problem document.
@@ -120,7 +176,9 @@ void write_problem(const httplib::Request& req, httplib::Response& res, const Pr
               {"instance", req.path}};
   if (!p.errors.empty()) doc["errors"] = p.errors;
   res.status = p.status;
-  res.set_content(doc.dump(), "application/problem+json");
+  // Paths and parameters echoed back may hold bytes that are not UTF-8.
+  res.set_content(doc.dump(-1, ' ', false, json::error_handler_t::replace),
+                  "application/problem+json");
 }
 
 std::string etag_of(const std::string& body) {
@@ -241,32 +299,46 @@ json material_pair(const json& scene) {
   return nullptr;
 }
 
-// Every material reference of an uploaded scene must name a library material:
-// paths would make the server read its own files.
-void check_material_names(const json& doc, const std::string& pointer,
-                          const std::set<std::string>& names, std::vector<SchemaViolation>& out) {
-  if (doc.is_object()) {
-    for (const auto& [k, v] : doc.items()) {
-      std::string escaped;
-      for (char ch : k)
-        escaped += ch == '~'   ? std::string("~0")
-                   : ch == '/' ? std::string("~1")
-                               : std::string(1, ch);
-      const std::string p = pointer + "/" + escaped;
-      if (k == "material" && v.is_string() && !names.count(v.get<std::string>())) {
-        out.push_back({p, "unknown material '" + v.get<std::string>() +
-                              "' (the library's names are listed at /api/v1/materials; files "
-                              "cannot be named over the API)"});
-      } else if (k == "material" && v.is_object() && v.contains("base") && v["base"].is_string() &&
-                 !names.count(v["base"].get<std::string>())) {
-        out.push_back({p + "/base", "unknown material '" + v["base"].get<std::string>() + "'"});
+// A material named over the API that is no library material: refused, since
+// a path would make the server read its own files.
+SchemaViolation not_a_library_material(const std::string& pointer, const std::string& name) {
+  return {pointer, "'" + name +
+                       "' is no library material: over the API a material is a library name "
+                       "(listed at /api/v1/materials) or an inline document; files cannot be "
+                       "named"};
+}
+
+void check_materials_of(const json& doc, const std::string& prefix,
+                        std::vector<SchemaViolation>& out) {
+  for (const splat::MaterialReference& m : splat::non_library_materials(doc))
+    out.push_back(not_a_library_material(prefix + m.pointer, m.name));
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// The materials a `fields` value names, wherever the field's pointer puts it:
+// at a material, at a material's base, or above them.
+void check_field_materials(const json& fields, const std::set<std::string>& names,
+                           std::vector<SchemaViolation>& out) {
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const std::string ptr = fields[i]["pointer"].get<std::string>();
+    const json& values = fields[i]["values"];
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      const std::string at = "/fields/" + std::to_string(i) + "/values/" + std::to_string(k);
+      const json& v = values[k];
+      const bool at_material = ends_with(ptr, "/material");
+      const bool has_base = v.is_object() && v.contains("base") && v["base"].is_string();
+      if ((at_material || ends_with(ptr, "/material/base")) && v.is_string()) {
+        const std::string name = v.get<std::string>();
+        if (!names.count(name)) out.push_back(not_a_library_material(at, name));
+      } else if (at_material && has_base) {
+        const std::string name = v["base"].get<std::string>();
+        if (!names.count(name)) out.push_back(not_a_library_material(at + "/base", name));
       } else {
-        check_material_names(v, p, names, out);
+        check_materials_of(v, at, out);
       }
-    }
-  } else if (doc.is_array()) {
-    for (std::size_t i = 0; i < doc.size(); ++i) {
-      check_material_names(doc[i], pointer + "/" + std::to_string(i), names, out);
     }
   }
 }
@@ -283,12 +355,26 @@ bool inside(const fs::path& file, const fs::path& dir) {
 
 }  // namespace
 
+// cpp-httplib 0.11 (Debian 12) listens with a backlog of 5, compiled into
+// the library: a burst of connections overflows it (reset, or held back a
+// second until the client sends its SYN again). listen() on the bound socket
+// again sets the backlog (Linux).
+class HttpServer : public httplib::Server {
+ public:
+  void raise_backlog() {
+    if (::listen(svr_sock_, k_listen_backlog) != 0) {
+      throw std::runtime_error(std::string("cannot set the listen backlog: ") +
+                               std::strerror(errno));
+    }
+  }
+};
+
 struct Server::Impl {
   ServerOptions o;
   campaign::Store store;
   fs::path jobs_dir;
   CampaignRunner runner;
-  httplib::Server http;
+  HttpServer http;
   std::set<std::string> material_names;
   std::atomic<bool> bound{false};
   std::atomic<long long> requests{0};
@@ -360,6 +446,7 @@ struct Server::Impl {
     return [this, f](const httplib::Request& req, httplib::Response& res) {
       ++requests;
       try {
+        check_parameters_utf8(req);
         f(req, res);
       } catch (const Problem& p) {
         write_problem(req, res, p);
@@ -372,6 +459,16 @@ struct Server::Impl {
                       {500, "internal", "Internal Server Error", e.what(), json::array()});
       }
     };
+  }
+
+  static void check_parameters_utf8(const httplib::Request& req) {
+    for (const auto& [name, value] : req.params) {
+      if (first_invalid_utf8(name) || first_invalid_utf8(value)) {
+        fail(400, "invalid-parameter", "Invalid query parameter",
+             "query parameters must be UTF-8 (percent-encoded)",
+             param_error(name, "not valid UTF-8"));
+      }
+    }
   }
 
   // Methods served per API path pattern ("GET, POST"), for the Allow header.
@@ -421,9 +518,10 @@ struct Server::Impl {
       if (req.method == "GET" || req.method == "HEAD" || req.method == "OPTIONS") {
         return httplib::Server::HandlerResponse::Unhandled;
       }
+      // The scheme is case-insensitive (RFC 9110, 11.1).
       const std::string h = req.get_header_value("Authorization");
-      const std::string scheme = "Bearer ";
-      const bool ok = h.size() > scheme.size() && h.compare(0, scheme.size(), scheme) == 0 &&
+      constexpr std::string_view scheme = "bearer ";
+      const bool ok = h.size() > scheme.size() && starts_with_ignoring_case(h, scheme) &&
                       constant_time_equal(h.substr(scheme.size()), o.token);
       if (ok) return httplib::Server::HandlerResponse::Unhandled;
       res.set_header("WWW-Authenticate", "Bearer realm=\"splat\"");
@@ -767,12 +865,7 @@ struct Server::Impl {
       fail(415, "unsupported-media-type", "Unsupported Media Type",
            "send the campaign as `Content-Type: application/json`");
     }
-    json doc;
-    try {
-      doc = splat::parse_json_text(req.body, "the request body");
-    } catch (const InputError& e) {
-      fail(400, "malformed-json", "Malformed JSON", e.what(), errors_of(e.violations()));
-    }
+    const json doc = parsed_body(req);
     const std::string key = req.get_header_value("Idempotency-Key");
     if (key.size() > 255) {
       fail(400, "invalid-header", "Invalid header",
@@ -796,7 +889,8 @@ struct Server::Impl {
     }
     const campaign::CampaignSpec spec = checked_spec(doc);
     const std::string version = campaign::solver_version_string();
-    const auto jobs = campaign::expand(spec, campaign::splat_scene_resolver(), version);
+    // Resolved without reading any file, whatever the checks above missed.
+    const auto jobs = campaign::expand(spec, campaign::library_scene_resolver(), version);
 
     campaign::CampaignRecord rec;
     rec.name = spec.name;
@@ -829,6 +923,26 @@ struct Server::Impl {
     reply_json(req, res, campaign_doc(campaign_or_404(id), true), 202);
   }
 
+  // The body as JSON: within the size limit (also for chunked bodies), UTF-8,
+  // and parsed with the depth limit before anything walks it.
+  json parsed_body(const httplib::Request& req) const {
+    if (req.body.size() > o.max_body_bytes) {
+      fail(413, "body-too-large", "Content Too Large",
+           "the request body is larger than the " + std::to_string(o.max_body_bytes) +
+               " bytes this server accepts");
+    }
+    if (const auto at = first_invalid_utf8(req.body)) {
+      const std::string where = "byte " + std::to_string(*at) + " of the request body";
+      fail(400, "invalid-utf8", "Body is not UTF-8", where + " is not valid UTF-8",
+           json::array({{{"pointer", ""}, {"detail", "not valid UTF-8 from " + where}}}));
+    }
+    try {
+      return splat::parse_json_text(req.body, "the request body");
+    } catch (const InputError& e) {
+      fail(400, "malformed-json", "Malformed JSON", e.what(), errors_of(e.violations()));
+    }
+  }
+
   // Everything that can be wrong with a submitted campaign, found before
   // anything is written.
   campaign::CampaignSpec checked_spec(const json& doc) {
@@ -839,55 +953,57 @@ struct Server::Impl {
           {"/base_scene",
            "must be the scene document itself over the API (a path would be read on the server)"}});
     }
-    // The velocity range's length, before read_campaign lists it.
-    if (doc["velocity"].contains("range")) {
-      const json& r = doc["velocity"]["range"];
-      const double n =
-          std::floor((r["to"].get<double>() - r["from"].get<double>()) / r["step"].get<double>()) +
-          1;
-      if (n > o.max_jobs_per_campaign) {
-        fail(422, "grid-too-large", "Grid too large",
-             "the velocity range alone has " + std::to_string(static_cast<long long>(n)) +
-                 " points; this server takes at most " + std::to_string(o.max_jobs_per_campaign) +
-                 " jobs per campaign",
-             json::array({{{"pointer", "/velocity/range"},
-                           {"detail", "more than " + std::to_string(o.max_jobs_per_campaign) +
-                                          " velocities"}}}));
-      }
-    }
-    check_material_names(doc["base_scene"], "/base_scene", material_names, v);
-    if (doc.contains("fields")) {
-      for (std::size_t i = 0; i < doc["fields"].size(); ++i) {
-        const json& f = doc["fields"][i];
-        const std::string ptr = f["pointer"].get<std::string>();
-        const bool is_material =
-            ptr.size() >= 9 && ptr.compare(ptr.size() - 9, 9, "/material") == 0;
-        if (!is_material) continue;
-        for (std::size_t k = 0; k < f["values"].size(); ++k) {
-          const json& val = f["values"][k];
-          if (val.is_string() && !material_names.count(val.get<std::string>())) {
-            v.push_back({"/fields/" + std::to_string(i) + "/values/" + std::to_string(k),
-                         "unknown material '" + val.get<std::string>() + "'"});
-          }
-        }
-      }
-    }
+    check_velocity_range(doc);
+    check_materials_of(doc["base_scene"], "/base_scene", v);
+    if (doc.contains("fields")) check_field_materials(doc["fields"], material_names, v);
+    check_job_threads(doc, v);
     if (!v.empty()) throw InputError(v);
     campaign::CampaignSpec spec = campaign::read_campaign(doc);
+    check_grid(spec);
+    return spec;
+  }
+
+  // The velocity range's length, before read_campaign lists it.
+  void check_velocity_range(const json& doc) const {
+    if (!doc["velocity"].contains("range")) return;
+    const json& r = doc["velocity"]["range"];
+    const double n =
+        std::floor((r["to"].get<double>() - r["from"].get<double>()) / r["step"].get<double>()) + 1;
+    if (n <= o.max_jobs_per_campaign) return;
+    fail(422, "grid-too-large", "Grid too large",
+         "the velocity range alone has " + std::to_string(static_cast<long long>(n)) +
+             " points; this server takes at most " + std::to_string(o.max_jobs_per_campaign) +
+             " jobs per campaign",
+         json::array({{{"pointer", "/velocity/range"},
+                       {"detail",
+                        "more than " + std::to_string(o.max_jobs_per_campaign) + " velocities"}}}));
+  }
+
+  // Local jobs run on this machine: no more threads than it has cores (the
+  // schema's maximum bounds Slurm jobs).
+  void check_job_threads(const json& doc, std::vector<SchemaViolation>& out) const {
+    if (!doc.contains("job") || !doc["job"].contains("threads")) return;
+    const bool slurm = o.executor ? *o.executor == campaign::ExecutorKind::slurm
+                                  : doc.value("executor", "local") == "slurm";
+    if (slurm || doc["job"]["threads"].get<long long>() <= splat::max_threads()) return;
+    out.push_back({"/job/threads", "must be <= " + std::to_string(splat::max_threads()) +
+                                       " (-): the cores of the machine this server runs "
+                                       "local jobs on"});
+  }
+
+  void check_grid(const campaign::CampaignSpec& spec) const {
     double grid = static_cast<double>(spec.velocities.size());
     for (const campaign::ParameterAxis& a : spec.axes) grid *= static_cast<double>(a.values.size());
     const double extra = spec.refinement ? spec.refinement->max_extra_jobs : 0;
-    if (grid + extra > o.max_jobs_per_campaign) {
-      fail(422, "grid-too-large", "Grid too large",
-           "the campaign asks for " + std::to_string(static_cast<long long>(grid)) +
-               " grid jobs and up to " + std::to_string(static_cast<long long>(extra)) +
-               " refinement jobs; this server takes at most " +
-               std::to_string(o.max_jobs_per_campaign) + " per campaign",
-           json::array({{{"pointer", ""},
-                         {"detail", "grid points x parameter sets + refinement/max_extra_jobs > " +
-                                        std::to_string(o.max_jobs_per_campaign)}}}));
-    }
-    return spec;
+    if (grid + extra <= o.max_jobs_per_campaign) return;
+    fail(422, "grid-too-large", "Grid too large",
+         "the campaign asks for " + std::to_string(static_cast<long long>(grid)) +
+             " grid jobs and up to " + std::to_string(static_cast<long long>(extra)) +
+             " refinement jobs; this server takes at most " +
+             std::to_string(o.max_jobs_per_campaign) + " per campaign",
+         json::array({{{"pointer", ""},
+                       {"detail", "grid points x parameter sets + refinement/max_extra_jobs > " +
+                                      std::to_string(o.max_jobs_per_campaign)}}}));
   }
 
   // --- metrics ---------------------------------------------------------------
@@ -939,6 +1055,11 @@ Server::Server(ServerOptions options) {
                                 " without --token-file: only loopback addresses may go without a "
                                 "token");
   }
+  if (!options.token.empty()) {
+    if (const std::string why = token_problem(options.token); !why.empty()) {
+      throw std::invalid_argument("refusing a weak token: " + why);
+    }
+  }
   impl_ = std::make_unique<Impl>(std::move(options));
 }
 
@@ -957,6 +1078,7 @@ int Server::bind() {
     throw std::runtime_error("cannot listen on " + impl_->o.host + ":" +
                              std::to_string(impl_->o.port));
   }
+  impl_->http.raise_backlog();
   impl_->bound = true;
   return port;
 }

@@ -34,6 +34,13 @@ struct ServerOptions {
   bool run_campaigns = true;  // false: accept and store, never run (tests of the API alone)
 };
 
+constexpr int k_min_token_characters = 16;  // characters that are not spaces, -
+constexpr int k_listen_backlog = 4096;      // connections waiting to be accepted, -
+
+// Why a bearer token is too weak ("" when it is not): fewer than
+// k_min_token_characters characters that are not white space.
+std::string token_problem(const std::string& token);
+
 // True for 127.0.0.0/8, ::1 and "localhost".
 bool is_loopback_host(const std::string& host);
 
@@ -44,7 +51,7 @@ bool constant_time_equal(const std::string& a, const std::string& b);
 class Server {
  public:
   // Opens the store. Throws std::invalid_argument for a non-loopback host
-  // without a token.
+  // without a token and for a weak token (token_problem).
   explicit Server(ServerOptions options);
   ~Server();  // stop()
   Server(const Server&) = delete;

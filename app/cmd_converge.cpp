@@ -123,6 +123,7 @@ void print_value(const std::optional<double>& x, const char* fmt) {
 }
 
 int run_converge(const ConvergeOptions& o) {
+  check_threads_option(o.threads);
   const auto eq = o.levels.find('=');
   if (eq == std::string::npos || eq == 0 || o.levels[0] != '/') {
     throw InputError(

@@ -6,10 +6,12 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
+#include "solver/common/parallel.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/input/scene_io.hpp"
 #include "solver/two_mass/two_mass_model.hpp"
@@ -85,6 +87,7 @@ void print_human(const RunSummary& s) {
 }
 
 int run_scene(const RunOptions& o) {
+  check_threads_option(o.threads);
   const LoadedScene loaded = load_scene(o.scene, o.overrides);
   SimulationOptions so;
   so.output_dir = o.out;
@@ -115,6 +118,14 @@ int run_scene(const RunOptions& o) {
 
 }  // namespace
 
+void check_threads_option(int threads) {
+  if (threads < 0 || threads > max_threads()) {
+    throw std::invalid_argument("--threads " + std::to_string(threads) +
+                                ": must be 0 (the default) to " + std::to_string(max_threads()) +
+                                ", the cores of this machine");
+  }
+}
+
 void register_run(CLI::App& app, CommandTable& commands) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand("run", "Run one scene and print its result summary");
@@ -126,7 +137,8 @@ void register_run(CLI::App& app, CommandTable& commands) {
       ->capture_default_str();
   sub->add_flag("--json", o->json, "Print the summary as JSON (schemas/result.schema.json)");
   sub->add_flag("--progress", o->progress, "Print progress lines on stderr");
-  sub->add_option("--threads", o->threads, "OpenMP threads (0: default)")->capture_default_str();
+  sub->add_option("--threads", o->threads, "OpenMP threads (0: default; at most the cores)")
+      ->capture_default_str();
   commands.emplace_back(sub, [o] { return run_scene(*o); });
 }
 

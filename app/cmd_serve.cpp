@@ -12,6 +12,8 @@
 #include <pthread.h>
 #include <signal.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -46,9 +48,12 @@ std::string read_token(const std::string& file) {
   std::ifstream f(file);
   if (!f) throw std::runtime_error("cannot read the token file " + file);
   std::string t((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  while (!t.empty() && (t.back() == '\n' || t.back() == '\r' || t.back() == ' ')) t.pop_back();
-  if (t.size() < 16)
-    throw std::runtime_error("the token in " + file + " is shorter than 16 characters");
+  const auto space = [](char ch) { return std::isspace(static_cast<unsigned char>(ch)) != 0; };
+  while (!t.empty() && space(t.back())) t.pop_back();
+  t.erase(t.begin(), std::find_if_not(t.begin(), t.end(), space));
+  if (const std::string why = api::token_problem(t); !why.empty()) {
+    throw std::runtime_error("the token in " + file + " is too weak: " + why);
+  }
   return t;
 }
 

@@ -22,6 +22,10 @@ void register_serve(CLI::App& app, CommandTable& commands);
 void register_converge(CLI::App& app, CommandTable& commands);
 void register_window(CLI::App& app, CommandTable& commands);
 
+// Throws std::invalid_argument naming --threads unless 0 <= threads <= the
+// cores of this machine (splat::max_threads()).
+void check_threads_option(int threads);
+
 inline void register_all(CLI::App& app, CommandTable& commands) {
   register_materials(app, commands);
   register_mat_point(app, commands);

@@ -7,16 +7,23 @@
 // threads (keep-alive connections) send GET /api/v1/campaigns/1/windows as
 // fast as they can for D seconds or N requests in all, whichever comes first.
 // Prints throughput and latency percentiles, checks that every answer was a
-// 200 with the expected rows and that the campaign kept running throughout,
-// and exits 1 when a target is missed.
+// 200 with the expected rows and that the campaign kept running throughout.
+// Then a burst: --burst connections (200) opened at the same moment, one
+// window query each; prints how many were answered, reset, or got a 5xx.
+// Exits 1 when a target is missed (any reset or 5xx in the burst included).
 //   bench_api_load [--clients 4] [--seconds 5] [--max-requests 50000] [--workers 1]
+//                  [--burst 200]
+#include <arpa/inet.h>
 #include <httplib.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -96,6 +103,76 @@ int arg_int(int argc, char** argv, const char* name, int fallback) {
   return fallback;
 }
 
+struct BurstCounts {
+  std::atomic<int> answered{0};       // a status line below 500
+  std::atomic<int> resets{0};         // connection refused or reset
+  std::atomic<int> resent{0};         // connect took >= 0.9 s: a dropped SYN was sent again
+  std::atomic<int> server_errors{0};  // 5xx
+  std::atomic<int> other{0};          // timeouts, short answers
+};
+
+// One GET on a fresh connection (raw socket: a reset is told apart from a
+// timeout); the connection ends the answer.
+void one_get(int port, const std::string& path, BurstCounts& counts) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  timeval tv{10, 0};
+  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string answer;
+  int err = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool connected = connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+  const bool slow = std::chrono::steady_clock::now() - t0 >= std::chrono::milliseconds(900);
+  if (!connected) {
+    err = errno;
+  } else {
+    const std::string req = "GET " + path + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
+    if (send(fd, req.data(), req.size(), MSG_NOSIGNAL) < 0) err = errno;
+    char buf[4096];
+    for (ssize_t n; err == 0 && (n = recv(fd, buf, sizeof buf, 0)) != 0;) {
+      if (n < 0) err = errno;
+      if (n > 0) answer.append(buf, std::size_t(n));
+    }
+  }
+  close(fd);
+  if (slow) ++counts.resent;
+  if (err == ECONNRESET || err == ECONNREFUSED || err == EPIPE) {
+    ++counts.resets;
+  } else if (answer.rfind("HTTP/1.1 ", 0) != 0) {
+    ++counts.other;
+  } else if (answer.compare(9, 1, "5") == 0) {
+    ++counts.server_errors;
+  } else {
+    ++counts.answered;
+  }
+}
+
+// `n` connections opened at the same moment; true when all were answered.
+bool burst(int port, int n, const std::string& path) {
+  BurstCounts counts;
+  std::atomic<bool> go{false};
+  std::vector<std::thread> threads;
+  for (int i = 0; i < n; ++i) {
+    threads.emplace_back([&] {
+      while (!go.load()) std::this_thread::yield();
+      one_get(port, path, counts);
+    });
+  }
+  const auto start = Clock::now();
+  go = true;
+  for (std::thread& t : threads) t.join();
+  const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  std::printf(
+      "  burst           %d connections at once in %.0f ms: %d answered, %d reset, %d 5xx, "
+      "%d other; %d connected only after a resent SYN (full listen queue)\n",
+      n, ms, counts.answered.load(), counts.resets.load(), counts.server_errors.load(),
+      counts.other.load(), counts.resent.load());
+  return counts.answered == n && counts.resent == 0;
+}
+
 json get_json(httplib::Client& c, const std::string& path) {
   auto r = c.Get(path.c_str());
   if (!r || r->status != 200) throw std::runtime_error("GET " + path + " failed");
@@ -109,6 +186,7 @@ int main(int argc, char** argv) {
   const int seconds = arg_int(argc, argv, "--seconds", 5);
   const int max_requests = arg_int(argc, argv, "--max-requests", 50000);
   const int workers = arg_int(argc, argv, "--workers", 1);
+  const int burst_size = arg_int(argc, argv, "--burst", 200);
 
   std::random_device rd;
   const fs::path dir = fs::temp_directory_path() /
@@ -187,8 +265,9 @@ int main(int argc, char** argv) {
         after["name"].get<std::string>().c_str(), done_after - done_before, done_before, done_after,
         after["jobs"]["total"].get<int>(), after["state"].get<std::string>().c_str());
     std::printf("  bad answers     %d\n", bad.load());
+    const bool burst_ok = burst(server.port, burst_size, query);
     const bool ok = rate >= k_target_rate && percentile(all, 0.99) < k_target_p99_ms && bad == 0 &&
-                    campaign_ran;
+                    campaign_ran && burst_ok;
     std::printf("  %s\n", ok ? "PASS" : "FAIL");
     status = ok ? 0 : 1;
   } catch (const std::exception& e) {

@@ -7,16 +7,19 @@
 #include <cstring>
 #include <deque>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 #include "campaign/job_end.hpp"
 #include "campaign/ladders.hpp"
 #include "campaign/process.hpp"
 #include "campaign/slurm.hpp"
+#include "solver/common/parallel.hpp"
 
 namespace splat::campaign {
 
@@ -53,6 +56,28 @@ int usable_cores() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+// A failure that may pass on another attempt: queued again while retries
+// are left.
+JobEnd transient(const JobRecord& job, const JobOptions& opts, const std::string& what) {
+  JobEnd e;
+  e.retry = job.attempts <= opts.retries;
+  e.reason = what + " on attempt " + std::to_string(job.attempts) +
+             (e.retry ? ", retrying" : ", no retries left");
+  return e;
+}
+
+// Runs `f` when the scope ends, also by an exception.
+class ScopeExit {
+ public:
+  explicit ScopeExit(std::function<void()> f) : f_(std::move(f)) {}
+  ~ScopeExit() { f_(); }
+  ScopeExit(const ScopeExit&) = delete;
+  ScopeExit& operator=(const ScopeExit&) = delete;
+
+ private:
+  std::function<void()> f_;
+};
+
 }  // namespace
 
 JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::filesystem::path& dir,
@@ -72,15 +97,15 @@ JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::files
       e.reason = "cancelled while running";
       return e;
     case ProcessEnd::signaled:
-      e.reason = "killed by " + signal_name(pr.signal);
-      return e;
+      // Killed from outside (kill -9, the OOM killer) or crashed: another
+      // attempt may finish.
+      return transient(job, opts, "killed by " + signal_name(pr.signal));
     case ProcessEnd::exited:
       break;
   }
   if (pr.exit_code == k_exit_transient) {
-    e.retry = job.attempts <= opts.retries;
-    e.reason = "transient failure (exit code 75) on attempt " + std::to_string(job.attempts) +
-               (e.retry ? ", retrying" : ", no retries left") + ": " + err_tail();
+    e = transient(job, opts, "transient failure (exit code 75)");
+    e.reason += ": " + err_tail();
     return e;
   }
   if (pr.exit_code == k_exit_bad_input) {
@@ -221,6 +246,13 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   const std::string host = host_name();
   const std::string owner = this_process_owner();
   const int workers = std::max(1, options.workers);
+  const bool use_slurm = options.executor ? *options.executor == ExecutorKind::slurm
+                                          : spec.executor == ExecutorKind::slurm;
+  if (!use_slurm && spec.job.threads > splat::max_threads()) {
+    throw std::invalid_argument(
+        "/job/threads: " + std::to_string(spec.job.threads) + " asked; local jobs take at most " +
+        std::to_string(splat::max_threads()) + ", the cores of this machine");
+  }
   // More job threads than cores: waiting OpenMP threads must sleep, not spin,
   // or they take the cores the other jobs compute on (unless the user's
   // environment already chooses a wait policy).
@@ -326,6 +358,38 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     });
   }
 
+  bool pool_joined = false;
+  auto join_pool = [&] {
+    {
+      std::lock_guard lock(m);
+      closing = true;
+    }
+    cv.notify_all();
+    for (std::thread& t : pool) t.join();
+    pool_joined = true;
+  };
+  // A store error in this thread (a full disk) leaves run_sweep through here:
+  // the running jobs are stopped, the claimed ones not started go back to the
+  // queue while the store still takes writes, and the pool is joined before
+  // the error reaches the caller (the campaign stays `active`).
+  const ScopeExit stop_pool_on_error([&] {
+    if (pool_joined) return;
+    cancel_running = true;
+    std::deque<JobRecord> unstarted;
+    {
+      std::lock_guard lock(m);
+      unstarted.swap(work);
+    }
+    for (const JobRecord& j : unstarted) {
+      try {
+        store.requeue_job(j.hash, "requeued: its manager stopped on a store error");
+      } catch (const std::exception&) {
+        // Left `running`: the next manager of this host requeues it.
+      }
+    }
+    join_pool();
+  });
+
   Progress progress;
   progress.campaign_id = cid;
   auto report_progress = [&] {
@@ -365,8 +429,6 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   };
 
   bool cancelled = false;
-  const bool use_slurm = options.executor ? *options.executor == ExecutorKind::slurm
-                                          : spec.executor == ExecutorKind::slurm;
   if (use_slurm) {
     SlurmRound round{store, cid, spec, program, jobs_dir, options.slurm, owner, {}, {}};
     round.cancel_requested = cancel_requested;
@@ -448,12 +510,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     active -= static_cast<int>(work.size());
     work.clear();
   }
-  {
-    std::lock_guard lock(m);
-    closing = true;
-  }
-  cv.notify_all();
-  for (std::thread& t : pool) t.join();
+  join_pool();
 
   report.windows = compute_windows(store, cid);
   store.store_windows(cid, report.windows);

@@ -6,9 +6,10 @@
 // (argument vector, no shell) whose stdout is the result summary
 // (schemas/result.schema.json). Exit code 0 finished, 3 ended otherwise
 // (the summary's outcome says why), 2 bad input, 75 transient failure
-// (EX_TEMPFAIL: retried up to `retries` times); anything else, a signal, or
-// no summary is a failure. A job that outlives its time limit is stopped and
-// recorded timed-out.
+// (EX_TEMPFAIL). Exit 75 and death by a signal (kill -9, the OOM killer) are
+// retried up to `retries` times; any other exit code or no summary is a
+// failure. A job that outlives its time limit is stopped and recorded
+// timed-out.
 //
 // Resume: jobs a dead manager left running go back to the queue at start;
 // finished jobs are never redone (unless a rerun is asked for); a job is

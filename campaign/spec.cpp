@@ -7,6 +7,7 @@
 #include "campaign/ladders.hpp"
 #include "campaign/sha256.hpp"
 #include "solver/build_info.hpp"
+#include "solver/input/material_io.hpp"
 #include "solver/input/scene_io.hpp"
 #include "solver/input/schema.hpp"
 
@@ -65,6 +66,19 @@ std::string solver_version_string() {
 SceneResolver splat_scene_resolver() {
   return [](const json& scene, const std::filesystem::path& base_dir) {
     return splat::resolved_scene_json(scene, base_dir);
+  };
+}
+
+SceneResolver library_scene_resolver() {
+  return [](const json& scene, const std::filesystem::path&) {
+    std::vector<SchemaViolation> files;
+    for (const splat::MaterialReference& m : splat::non_library_materials(scene)) {
+      files.push_back({m.pointer, "'" + m.name +
+                                      "' is no library material (files are not read for this "
+                                      "scene: name a library material or give the document)"});
+    }
+    if (!files.empty()) throw InputError(std::move(files));
+    return splat::resolved_scene_json(scene, {});
   };
 }
 

@@ -74,6 +74,10 @@ CampaignSpec load_campaign(const std::filesystem::path& file);
 using SceneResolver = std::function<nlohmann::json(const nlohmann::json& scene,
                                                    const std::filesystem::path& base_dir)>;
 SceneResolver splat_scene_resolver();
+// splat's resolution that never reads a file: a scene naming a material that
+// is not in the library (a path) throws InputError at that material. For
+// scenes that come over the network.
+SceneResolver library_scene_resolver();
 
 // The version string that goes into every job identity: "VERSION+COMMIT".
 std::string solver_version_string();

@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "campaign/process.hpp"
 
@@ -200,8 +202,8 @@ std::string host_name() {
   return buf;
 }
 
-Store::Store(const std::filesystem::path& file) : path_(file) {
-  writer_db_ = std::make_unique<Database>(file);
+Store::Store(const std::filesystem::path& file, int busy_timeout_ms) : path_(file) {
+  writer_db_ = std::make_unique<Database>(file, busy_timeout_ms);
   configure(*writer_db_);
   migrate(*writer_db_);
   writer_ = std::thread([this] { writer_loop(); });
@@ -254,11 +256,7 @@ void Store::writer_loop() {
 }
 
 void Store::write(std::function<void(Database&)> work) {
-  std::packaged_task<void()> task([this, work = std::move(work)] {
-    Transaction tx(*writer_db_);
-    work(*writer_db_);
-    tx.commit();
-  });
+  std::packaged_task<void()> task([this, work = std::move(work)] { run_until_written(work); });
   std::future<void> done = task.get_future();
   {
     std::lock_guard lock(queue_mutex_);
@@ -266,6 +264,28 @@ void Store::write(std::function<void(Database&)> work) {
   }
   queue_cv_.notify_one();
   done.get();
+}
+
+// Another connection holding the write lock past the busy timeout is waited
+// out: the transaction (rolled back) is tried again until it commits, so a
+// busy store never drops a write such as a finished job's result.
+void Store::run_until_written(const std::function<void(Database&)>& work) {
+  for (int attempt = 1;; ++attempt) {
+    try {
+      Transaction tx(*writer_db_);
+      work(*writer_db_);
+      tx.commit();
+      return;
+    } catch (const SqliteError& e) {
+      const int code = e.code() & 0xff;
+      if (code != SQLITE_BUSY && code != SQLITE_LOCKED) throw;
+      if (attempt == 1 || attempt % 10 == 0) {
+        std::fprintf(stderr, "splat: store %s is locked by another process; waiting (%s)\n",
+                     path_.c_str(), e.what());
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
 }
 
 Database& Store::reader() {
@@ -374,6 +394,29 @@ AddPointsStats add_points_in(Database& db, std::int64_t campaign_id,
   return stats;
 }
 
+// Every job of the campaign a stop left cancelled (grid and refinement
+// points alike) goes back to the queue, its result dropped. Returns how many.
+int requeue_cancelled_in(Database& db, std::int64_t campaign_id) {
+  Statement cancelled = db.prepare(
+      "SELECT DISTINCT j.hash FROM jobs j JOIN campaign_points p ON p.job_hash = j.hash "
+      "WHERE p.campaign_id = ? AND j.state = 'cancelled'");
+  cancelled.bind(1, campaign_id);
+  std::vector<std::string> hashes;
+  while (cancelled.step()) hashes.push_back(cancelled.text(0));
+  Statement drop_result = db.prepare("DELETE FROM results WHERE job_hash = ?");
+  Statement requeue = db.prepare(
+      "UPDATE jobs SET state = 'queued', attempts = 0, owner = '', "
+      "exit_reason = 'requeued after cancellation', "
+      "priority = MAX(priority, (SELECT priority FROM campaigns WHERE id = ?)) WHERE hash = ?");
+  for (const std::string& h : hashes) {
+    drop_result.reset();
+    drop_result.bind(1, h).run();
+    requeue.reset();
+    requeue.bind(1, campaign_id).bind(2, h).run();
+  }
+  return static_cast<int>(hashes.size());
+}
+
 }  // namespace
 
 std::int64_t Store::open_campaign(const CampaignRecord& c) {
@@ -400,6 +443,7 @@ OpenedCampaign Store::open_campaign(const CampaignRecord& c, const std::vector<N
     }
     out.id = open_campaign_in(db, c);
     out.points = add_points_in(db, out.id, points, rerun);
+    out.points.jobs_requeued += requeue_cancelled_in(db, out.id);
     if (key) {
       const double now = unix_now();
       db.prepare("DELETE FROM submissions WHERE created_at < ? OR key = ?")

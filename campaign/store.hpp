@@ -162,7 +162,9 @@ struct OpenedCampaign {
 class Store {
  public:
   // Opens or creates the file, applies pending migrations, starts the writer.
-  explicit Store(const std::filesystem::path& file);
+  // `busy_timeout_ms`: how long one attempt of a write waits for the write
+  // lock of another connection.
+  explicit Store(const std::filesystem::path& file, int busy_timeout_ms = 30000);
   ~Store();
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
@@ -175,6 +177,8 @@ class Store {
   // An existing campaign that was cancelled or finished becomes active again.
   std::int64_t open_campaign(const CampaignRecord& c);
   // open_campaign and add_points in one transaction: a failure stores neither.
+  // Every cancelled job of the campaign (refinement points too) is queued
+  // again: a stopped campaign resumes where it stopped.
   // With a key, the key is recorded in the same transaction; a key recorded
   // with the same body hash returns its campaign and writes nothing
   // (`replayed`), one recorded with another body hash throws
@@ -222,13 +226,16 @@ class Store {
   std::vector<WindowRecord> windows(std::int64_t campaign_id);
 
   // Runs `work` on the writer thread inside BEGIN IMMEDIATE ... COMMIT and
-  // waits for it (exceptions come back to the caller, after a rollback).
+  // waits for it (exceptions come back to the caller, after a rollback). A
+  // store locked by another connection is waited on, however long: `work`
+  // then runs again from the start, so it must only assign its outputs.
   void write(std::function<void(Database&)> work);
   // The calling thread's read connection.
   Database& reader();
 
  private:
   void writer_loop();
+  void run_until_written(const std::function<void(Database&)>& work);
   void migrate(Database& db);
 
   std::filesystem::path path_;

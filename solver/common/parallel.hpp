@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <thread>
 #include <vector>
 
 #ifdef _OPENMP
@@ -15,6 +16,12 @@
 #endif
 
 namespace splat {
+
+// The most OpenMP threads a run may ask for: the hardware threads of this
+// machine (std::thread::hardware_concurrency, at least 1).
+inline int max_threads() {
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
 
 // Sum over the blocks [first, last) of [0, n) (`block` indices each, the last
 // one shorter) of body(first, last), added in block order starting from

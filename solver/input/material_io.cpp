@@ -279,4 +279,51 @@ Material load_material(std::string_view name_or_path) {
   return material_from_json(material_document(name_or_path));
 }
 
+namespace {
+
+std::string escaped_token(const std::string& key) {
+  std::string out;
+  for (char ch : key) out += ch == '~' ? "~0" : ch == '/' ? "~1" : std::string(1, ch);
+  return out;
+}
+
+bool is_library_material(const std::string& name) {
+  const std::vector<std::string> names = material_names();
+  return std::binary_search(names.begin(), names.end(), name);
+}
+
+void find_non_library_materials(const json& doc, const std::string& pointer,
+                                std::vector<MaterialReference>& out) {
+  if (doc.is_array()) {
+    for (std::size_t i = 0; i < doc.size(); ++i)
+      find_non_library_materials(doc[i], pointer + "/" + std::to_string(i), out);
+    return;
+  }
+  if (!doc.is_object()) return;
+  for (const auto& [key, value] : doc.items()) {
+    const std::string p = pointer + "/" + escaped_token(key);
+    const json* name = nullptr;
+    std::string where = p;
+    if (key == "material" && value.is_string()) name = &value;
+    if (key == "material" && value.is_object() && value.contains("base") &&
+        value["base"].is_string()) {
+      name = &value["base"];
+      where = p + "/base";
+    }
+    if (name && !is_library_material(name->get<std::string>())) {
+      out.push_back({where, name->get<std::string>()});
+    } else if (!name) {
+      find_non_library_materials(value, p, out);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<MaterialReference> non_library_materials(const json& doc) {
+  std::vector<MaterialReference> out;
+  find_non_library_materials(doc, "", out);
+  return out;
+}
+
 }  // namespace splat

@@ -47,4 +47,16 @@ nlohmann::json material_document(std::string_view name_or_path);
 // material_from_json(material_document(name_or_path)).
 Material load_material(std::string_view name_or_path);
 
+// A material named by text somewhere in a document.
+struct MaterialReference {
+  std::string pointer;  // of the text: "/bodies/0/material", ".../material/base"
+  std::string name;
+};
+
+// Every material that `doc` (a scene or any part of one) names by a text that
+// is no library material: a file path or an unknown name. Found wherever a
+// "material" member is a string, or an object whose "base" is a string.
+// Callers that must not read files (the API) refuse these.
+std::vector<MaterialReference> non_library_materials(const nlohmann::json& doc);
+
 }  // namespace splat

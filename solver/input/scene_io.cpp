@@ -778,6 +778,8 @@ void apply_override(json& doc, const std::string& text) {
     value = json::parse(value_text);
   } catch (const json::parse_error&) {
     value = value_text;  // not JSON: a string, e.g. a material name
+  } catch (const json::out_of_range&) {
+    override_error(text, "the number is outside the range of a double");
   }
 
   // Walk to the parent: every step must exist.

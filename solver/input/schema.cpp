@@ -910,18 +910,18 @@ const CompiledSchema& embedded_schema(std::string_view name) {
 // Parsing: positions of syntax errors, and fields given twice.
 
 // Tracks the path through the document while nlohmann's parser reports
-// events, to name the pointer of a repeated field.
+// events, to name the pointer of a repeated field and to stop at the depth
+// limit before a deeper container is built (printing, hashing and validating
+// a document recurse once per level).
 class DuplicateFinder {
  public:
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
       case json::parse_event_t::object_start:
-        begin_value();
-        frames_.push_back({false, {}, {}, 0});
+        begin_container(false);
         break;
       case json::parse_event_t::array_start:
-        begin_value();
-        frames_.push_back({true, {}, {}, 0});
+        begin_container(true);
         break;
       case json::parse_event_t::object_end:
       case json::parse_event_t::array_end:
@@ -931,12 +931,7 @@ class DuplicateFinder {
         Frame& top = frames_.back();
         top.key = parsed.get<std::string>();
         if (!top.keys.insert(top.key).second) {
-          std::string pointer;
-          for (const Frame& f : frames_) {
-            pointer += '/';
-            pointer += f.is_array ? std::to_string(f.count - 1) : escape_pointer_token(f.key);
-          }
-          throw InputError({{pointer, "duplicate field (given twice in the same object)"}});
+          throw InputError({{pointer(), "duplicate field (given twice in the same object)"}});
         }
         break;
       }
@@ -961,6 +956,26 @@ class DuplicateFinder {
   // arrays, where it counts the element.
   void begin_value() {
     if (!frames_.empty() && frames_.back().is_array) ++frames_.back().count;
+  }
+
+  void begin_container(bool is_array) {
+    begin_value();
+    if (frames_.size() >= std::size_t(k_max_json_depth)) {
+      throw InputError(
+          {{pointer(), "arrays and objects nested deeper than " + std::to_string(k_max_json_depth) +
+                           " levels (the limit of JSON input)"}});
+    }
+    frames_.push_back({is_array, {}, {}, 0});
+  }
+
+  // The pointer of the value being read.
+  std::string pointer() const {
+    std::string p;
+    for (const Frame& f : frames_) {
+      p += '/';
+      p += f.is_array ? std::to_string(f.count - 1) : escape_pointer_token(f.key);
+    }
+    return p;
   }
 };
 

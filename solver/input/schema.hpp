@@ -67,10 +67,16 @@ void validate_or_throw(std::string_view schema_name, const nlohmann::json& doc);
 std::vector<SchemaViolation> validate_against(const nlohmann::json& schema,
                                               const nlohmann::json& doc);
 
+// Arrays and objects nest at most this deep in JSON input (scenes use less
+// than 10 levels); deeper text is refused while it is parsed.
+constexpr int k_max_json_depth = 64;  // levels, -
+
 // Parses JSON text. `what` names the text in messages ("file 'a.json'").
-// Malformed text or a field given twice in one object throws InputError with
-// one violation: pointer "" and "malformed JSON in WHAT at line L, column C:
-// REASON", or the pointer of the repeated field and "duplicate field".
+// Malformed text, a field given twice in one object or nesting deeper than
+// k_max_json_depth throws InputError with one violation: pointer "" and
+// "malformed JSON in WHAT at line L, column C: REASON", or the pointer of the
+// repeated field and "duplicate field", or the pointer of the container one
+// level too deep.
 nlohmann::json parse_json_text(std::string_view text, std::string_view what);
 
 // Reads and parses a JSON file; a missing, unreadable or malformed file throws

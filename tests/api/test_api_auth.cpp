@@ -68,6 +68,38 @@ TEST(api_auth, token_required_on_mutations_only) {
   EXPECT_EQ(c.Post(cancel.c_str(), auth, "", "application/json")->status, 202);
 }
 
+// RFC 9110: the scheme is case-insensitive.
+TEST(api_auth, the_scheme_is_case_insensitive) {
+  TempDir dir;
+  api::ServerOptions o = options_for(dir);
+  o.run_campaigns = false;
+  o.token = "tok-9b1d6f0e2a7c4d11";
+  ServerHandle server(o);
+  httplib::Client c = server.client();
+  for (const char* scheme : {"bearer", "BEARER", "BeArEr"}) {
+    auto r = post_json(c, "/api/v1/campaigns", small_campaign(std::string("auth-") + scheme),
+                       {{"Authorization", std::string(scheme) + " " + o.token}});
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 202) << scheme << ": " << r->body;
+  }
+  expect_problem(post_json(c, "/api/v1/campaigns", small_campaign(),
+                           {{"Authorization", "Bearerx " + o.token}}),
+                 401);
+}
+
+TEST(api_auth, tokens_need_sixteen_non_space_characters) {
+  TempDir dir;
+  api::ServerOptions o = options_for(dir);
+  for (const std::string& weak :
+       {std::string(17, '\t'), std::string(40, ' '), std::string("  short-token  \t\t\t\t\t\t\t\t"),
+        std::string("abc def ghi jkl mn")}) {
+    o.token = weak;
+    EXPECT_THROW(api::Server s(o), std::invalid_argument) << "'" << weak << "'";
+  }
+  o.token = "0123456789abcdef";
+  EXPECT_NO_THROW(api::Server s(o));
+}
+
 TEST(api_auth, no_token_means_open_on_loopback) {
   TempDir dir;
   api::ServerOptions o = options_for(dir);

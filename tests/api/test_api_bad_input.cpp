@@ -121,6 +121,76 @@ TEST_F(BadInput, oversized_grid_and_body) {
   expect_problem(post(fat), 413);
 }
 
+// Nested arrays as deep as the body allows: refused while parsing, before
+// anything (dump, hash, validation) walks the document.
+std::string nested_base_scene(int depth) {
+  return R"({"name": "deep", "base_scene": )" + std::string(std::size_t(depth), '[') +
+         std::string(std::size_t(depth), ']') + R"(, "velocity": {"values": [1]}})";
+}
+
+// The pointer of the first error of a problem document, "-" when none.
+std::string first_pointer(const httplib::Result& r) {
+  const json p = json::parse(r->body, nullptr, false);
+  if (!p.is_object() || !p.contains("errors") || p["errors"].empty()) return "-";
+  return p["errors"][0].value("pointer", "-");
+}
+
+TEST_F(BadInput, nesting_deeper_than_64_levels) {
+  auto r = post_text(nested_base_scene(65));
+  expect_problem(r, 400);
+  EXPECT_EQ(first_pointer(r).rfind("/base_scene/0/0/", 0), 0u) << r->body;
+  EXPECT_NE(r->body.find("deeper than 64"), std::string::npos) << r->body;
+  // 64 levels in all parse; the schema then refuses the array.
+  expect_problem(post_text(nested_base_scene(63)), 422, "/base_scene");
+  expect_problem(post_text(nested_base_scene(30000)), 400);
+}
+
+TEST_F(BadInput, materials_inside_field_values_name_no_file) {
+  json c = small_campaign();
+  c["base_scene"] = {
+      {"name", "impact"},
+      {"particle_impact",
+       {{"particle", {{"material", "al-thesis"}, {"radius", 1e-5}}}, {"velocity", 500}}}};
+  c["velocity"] = {{"pointer", "/particle_impact/velocity"}, {"values", {400, 500}}};
+  c.erase("G_c");
+  const std::string file = std::string(SPLAT_SOURCE_DIR) + "/materials/cu-thesis.json";
+  for (const std::string& path : {std::string("/etc/passwd"), file}) {
+    c["fields"] = {{{"pointer", "/particle_impact/particle"},
+                    {"unit", "-"},
+                    {"values", {{{"material", path}, {"radius", 1e-5}}}}}};
+    expect_problem(post(c), 422, "/fields/0/values/0/material");
+    c["fields"][0]["values"][0]["material"] = {{"base", path}, {"density", 2700}};
+    expect_problem(post(c), 422, "/fields/0/values/0/material/base");
+    c["fields"] = {
+        {{"pointer", "/particle_impact"},
+         {"unit", "-"},
+         {"values", {{{"particle", {{"material", path}, {"radius", 1e-5}}}, {"velocity", 500}}}}}};
+    expect_problem(post(c), 422, "/fields/0/values/0/particle/material");
+  }
+}
+
+TEST_F(BadInput, job_threads_beyond_the_machine) {
+  expect_problem(post(with(small_campaign(), "/job/threads", 100000)), 422, "/job/threads");
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  expect_problem(post(with(small_campaign(), "/job/threads", cores + 1)), 422, "/job/threads");
+}
+
+TEST_F(BadInput, invalid_utf8) {
+  expect_problem(post_text("{\"name\": \"caf\xc3\x28\"}"), 400, "");
+  expect_problem(post_text("{\"name\": \"x\xff\"}"), 400, "");
+  expect_problem(post_text("\xef\xbb\xbf\xff{}"), 400, "");
+  httplib::Client c = server_->client();
+  const auto expect_parameter = [](const httplib::Result& r, const std::string& name) {
+    expect_problem(r, 400);
+    const json p = json::parse(r->body, nullptr, false);
+    ASSERT_TRUE(p.contains("errors")) << r->body;
+    EXPECT_EQ(p["errors"][0].value("parameter", ""), name) << r->body;
+  };
+  expect_parameter(c.Get("/api/v1/campaigns/1/jobs?state=%FF"), "state");
+  expect_parameter(c.Get("/api/v1/windows?name=%C3%28"), "name");
+  expect_problem(c.Get("/api/v1/nothing%FF"), 404);
+}
+
 TEST_F(BadInput, unknown_routes_and_ids) {
   httplib::Client c = server_->client();
   expect_problem(c.Get("/api/v1/nothing"), 404);
@@ -173,6 +243,21 @@ TEST_F(BadInput, path_traversal_attempts) {
     EXPECT_GE(r->status, 400) << path;
     EXPECT_EQ(r->body.find("root:"), std::string::npos) << path;
   }
+}
+
+// 100,000 nested brackets (200 KB, under the default 1 MiB body limit) are
+// refused with a 400 before anything recurses through them, and the server
+// answers the next request.
+TEST(api_bad_input, a_hundred_thousand_nested_brackets_leave_the_server_alive) {
+  TempDir dir;
+  api::ServerOptions o = options_for(dir);
+  o.run_campaigns = false;
+  ServerHandle server(o);
+  httplib::Client c = server.client();
+  const std::string before = store_fingerprint(o.db);
+  expect_problem(c.Post("/api/v1/campaigns", nested_base_scene(100000), "application/json"), 400);
+  EXPECT_EQ(c.Get("/api/v1/health")->status, 200);
+  EXPECT_EQ(store_fingerprint(o.db), before);
 }
 
 }  // namespace

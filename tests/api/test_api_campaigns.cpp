@@ -4,6 +4,7 @@
 // model; every response checked against its schema.
 #include <cmath>
 
+#include "solver/input/material_io.hpp"
 #include "tests/api/api_fixture.hpp"
 
 namespace splat::api_test {
@@ -78,6 +79,35 @@ TEST(api_campaigns, submit_poll_windows_json_and_csv) {
   auto none = c.Get("/api/v1/windows?material_pair=cu-thesis/cu-thesis");
   ASSERT_TRUE(none);
   EXPECT_EQ(body_json(none)["windows"].size(), 0u);  // two-mass scenes have no materials
+}
+
+// Materials over the API: library names and inline documents, in the base
+// scene and in `fields` values, whatever the field's pointer.
+TEST(api_campaigns, materials_by_library_name_or_inline_document) {
+  TempDir dir;
+  api::ServerOptions o = options_for(dir);
+  o.run_campaigns = false;
+  ServerHandle server(o);
+  httplib::Client c = server.client();
+  const json inline_cu = splat::material_document("cu-thesis");
+  json spec = {{"name", "api-materials"},
+               {"base_scene",
+                {{"name", "impact"},
+                 {"particle_impact",
+                  {{"particle", {{"material", "al-thesis"}, {"radius", 1e-5}}},
+                   {"substrate", {{"material", inline_cu}}},
+                   {"velocity", 500}}}}},
+               {"velocity", {{"pointer", "/particle_impact/velocity"}, {"values", {400, 500}}}},
+               {"fields",
+                {{{"pointer", "/particle_impact/particle"},
+                  {"unit", "-"},
+                  {"values",
+                   {{{"material", "cu-thesis"}, {"radius", 1e-5}},
+                    {{"material", inline_cu}, {"radius", 1e-5}}}}}}}};
+  auto r = post_json(c, "/api/v1/campaigns", spec);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 202) << r->body;
+  EXPECT_EQ(body_json(r)["jobs"]["total"], 4) << r->body;
 }
 
 TEST(api_campaigns, pages_of_campaigns_and_jobs) {

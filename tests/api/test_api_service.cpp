@@ -3,11 +3,18 @@
 // running campaign resumable; the next server on the same store finishes it
 // without redoing finished jobs. Also the command-line refusal of a public
 // address without a token.
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 
+#include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <mutex>
+#include <vector>
 
 #include "tests/api/api_fixture.hpp"
 
@@ -80,6 +87,86 @@ class ServeProcess {
   int port_ = 0;
   bool exited_ = false;
 };
+
+struct BurstCounts {
+  int answered = 0;       // a status line below 500
+  int resets = 0;         // connection refused or reset
+  int resent = 0;         // connect took >= 0.9 s: a dropped SYN was sent again
+  int server_errors = 0;  // 5xx
+  int other = 0;          // timeouts, short answers
+};
+
+// One GET on a fresh connection; the connection ends the answer.
+void one_get(int port, const std::string& path, BurstCounts& counts, std::mutex& m) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  timeval tv{10, 0};
+  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string answer;
+  int err = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool connected = connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+  const bool slow = std::chrono::steady_clock::now() - t0 >= std::chrono::milliseconds(900);
+  if (!connected) {
+    err = errno;
+  } else {
+    const std::string req = "GET " + path + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
+    if (send(fd, req.data(), req.size(), MSG_NOSIGNAL) < 0) err = errno;
+    char buf[4096];
+    for (ssize_t n; err == 0 && (n = recv(fd, buf, sizeof buf, 0)) != 0;) {
+      if (n < 0) err = errno;
+      if (n > 0) answer.append(buf, std::size_t(n));
+    }
+  }
+  close(fd);
+  std::lock_guard lock(m);
+  if (slow) ++counts.resent;
+  if (err == ECONNRESET || err == ECONNREFUSED || err == EPIPE) {
+    ++counts.resets;
+  } else if (answer.rfind("HTTP/1.1 ", 0) != 0) {
+    ++counts.other;
+  } else if (answer.compare(9, 1, "5") == 0) {
+    ++counts.server_errors;
+  } else {
+    ++counts.answered;
+  }
+}
+
+// `n` connections opened at the same moment, one GET each.
+BurstCounts burst(int port, int n, const std::string& path) {
+  BurstCounts counts;
+  std::mutex m;
+  std::atomic<bool> go{false};
+  std::vector<std::thread> threads;
+  for (int i = 0; i < n; ++i) {
+    threads.emplace_back([&] {
+      while (!go.load()) std::this_thread::yield();
+      one_get(port, path, counts, m);
+    });
+  }
+  go = true;
+  for (std::thread& t : threads) t.join();
+  return counts;
+}
+
+TEST(api_service, a_burst_of_200_connections_is_answered) {
+  TempDir dir;
+  api::ServerOptions o = options_for(dir);
+  o.run_campaigns = false;
+  ServerHandle server(o);
+  for (int round = 0; round < 3; ++round) {
+    const BurstCounts c = burst(server.port(), 200, "/api/v1/health");
+    EXPECT_EQ(c.resets, 0) << "round " << round;
+    // A full listen queue drops the SYN; the client sends it again after 1 s.
+    EXPECT_EQ(c.resent, 0) << "round " << round;
+    EXPECT_EQ(c.server_errors, 0) << "round " << round;
+    EXPECT_EQ(c.other, 0) << "round " << round;
+    EXPECT_EQ(c.answered, 200) << "round " << round;
+  }
+}
 
 TEST(api_service, health_metrics_materials_schemas) {
   TempDir dir;

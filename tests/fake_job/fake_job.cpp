@@ -8,6 +8,7 @@
 //      "segfault": true,             die by SIGSEGV
 //      "exit": 5,                    exit with this code and no summary
 //      "transient_failures": 2,      exit 75 on the first 2 attempts (counted in DIR)
+//      "killed_attempts": 2,         die by SIGKILL on the first 2 attempts (as the OOM killer)
 //      "garbage": true,              print text that is not JSON, exit 0
 //      "outcome": "unstable",        outcome to report (default: from threshold)
 //      "threshold": 2.5,             stick when V0 < threshold, else rebound
@@ -53,7 +54,8 @@ int main(int argc, char** argv) {
   }
   if (fake.value("ignore_term", false)) std::signal(SIGTERM, SIG_IGN);
   const int transient = fake.value("transient_failures", 0);
-  if (transient > 0) {
+  const int killed = fake.value("killed_attempts", 0);
+  if (transient > 0 || killed > 0) {
     const std::string counter = out_dir + "/attempts";
     int n = 0;
     std::ifstream(counter) >> n;
@@ -62,6 +64,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "fake_job: transient failure %d\n", n + 1);
       return 75;
     }
+    if (n < killed) std::raise(SIGKILL);
   }
   const double sleep_s = fake.value("sleep", 0.0);
   if (sleep_s > 0) std::this_thread::sleep_for(std::chrono::duration<double>(sleep_s));

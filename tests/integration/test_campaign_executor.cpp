@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "campaign/manager.hpp"
+#include "campaign/sqlite.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -86,6 +87,8 @@ TEST(campaign_executor, crashes_timeouts_and_bad_output_are_recorded_while_other
       json::object({{"outcome", "unstable"}}),
       json::object({{"transient_failures", 1}, {"threshold", 5}}),
       json::object({{"transient_failures", 5}}),
+      json::object({{"killed_attempts", 1}, {"threshold", 5}}),
+      json::object({{"killed_attempts", 5}}),
   };
   const CampaignSpec spec = fake_campaign("crashes", fakes, {1.0}, 0.5);
   const SweepReport r = run_sweep(store, spec, fake_options(3));
@@ -96,7 +99,9 @@ TEST(campaign_executor, crashes_timeouts_and_bad_output_are_recorded_while_other
   EXPECT_EQ(job(fakes[0]).state, JobState::succeeded);
   EXPECT_EQ(store.result(job(fakes[0]).hash)->outcome, "stick");
 
+  // A signal death is retried like a transient failure, then recorded with the signal.
   EXPECT_EQ(job(fakes[1]).state, JobState::failed);
+  EXPECT_EQ(job(fakes[1]).attempts, 2);
   EXPECT_NE(job(fakes[1]).exit_reason.find("killed by signal 11"), std::string::npos)
       << job(fakes[1]).exit_reason;
   EXPECT_FALSE(store.result(job(fakes[1]).hash));
@@ -124,13 +129,23 @@ TEST(campaign_executor, crashes_timeouts_and_bad_output_are_recorded_while_other
   EXPECT_EQ(job(fakes[9]).state, JobState::failed);
   EXPECT_EQ(job(fakes[9]).attempts, 2);
   EXPECT_NE(job(fakes[9]).exit_reason.find("no retries left"), std::string::npos);
+  // Killed by SIGKILL (kill -9, the OOM killer) once: the retry succeeds.
+  EXPECT_EQ(job(fakes[10]).state, JobState::succeeded);
+  EXPECT_EQ(job(fakes[10]).attempts, 2);
+  // Killed on every attempt: fails after 1 + 1 attempts, naming the signal.
+  EXPECT_EQ(job(fakes[11]).state, JobState::failed);
+  EXPECT_EQ(job(fakes[11]).attempts, 2);
+  EXPECT_NE(job(fakes[11]).exit_reason.find("killed by signal 9"), std::string::npos)
+      << job(fakes[11]).exit_reason;
+  EXPECT_NE(job(fakes[11]).exit_reason.find("no retries left"), std::string::npos)
+      << job(fakes[11]).exit_reason;
 
   // The windows show the failures as neither stick nor rebound.
   // Only the two jobs that stuck count; every other one is unclassified.
   for (const WindowRecord& w : r.windows) {
     const json doc = json::parse(w.window);
     const json fake = json::parse(w.params).at("/fake");
-    const bool sticks = fake == fakes[0] || fake == fakes[8];
+    const bool sticks = fake == fakes[0] || fake == fakes[8] || fake == fakes[10];
     EXPECT_EQ(doc.at("sticks"), sticks ? 1 : 0) << fake;
     EXPECT_EQ(doc.at("rebounds"), 0) << fake;
     EXPECT_EQ(doc.at("unclassified").size(), sticks ? 0u : 1u) << fake;
@@ -204,6 +219,58 @@ TEST(campaign_executor, interrupt_flag_cancels_like_a_request) {
   EXPECT_EQ(r.counts.cancelled, 3);
 }
 
+// A graceful stop (SIGTERM of the server, Ctrl-C of `splat sweep`) right
+// after a refinement round was added cancels its jobs; the resumed campaign
+// runs them instead of ending with them unclassified.
+TEST(campaign_executor, a_stop_during_refinement_resumes_the_refinement_jobs) {
+  TempDir t;
+  Store store(t.path / "c.db");
+  CampaignSpec spec = fake_campaign("refine-stop", {json::object({{"threshold", 2.5}})}, {2, 3});
+  spec.refinement = RefinementOptions{0.1, 1, 0.0};
+  std::atomic<bool> interrupt{false};
+  ManagerOptions o = fake_options(1);
+  o.interrupt = &interrupt;
+  o.on_progress = [&](const Progress& p) {
+    if (p.round >= 1) interrupt = true;
+  };
+  const SweepReport stopped = run_sweep(store, spec, o);
+  ASSERT_EQ(stopped.state, CampaignState::cancelled);
+  ASSERT_EQ(stopped.refinement_jobs, 1);
+  ASSERT_EQ(stopped.counts.cancelled, 1);
+
+  const SweepReport resumed = run_sweep(store, spec, fake_options(1));
+  EXPECT_EQ(resumed.state, CampaignState::finished);
+  EXPECT_EQ(resumed.counts.cancelled, 0);
+  EXPECT_EQ(resumed.counts.succeeded, 3);
+  for (const PointStatus& p : store.points(resumed.campaign_id)) {
+    EXPECT_EQ(p.state, JobState::succeeded) << p.point.velocity << " " << p.point.origin;
+  }
+}
+
+// A store that refuses a write in the middle of a run (a full disk; here a
+// trigger refuses a second job going `running`): the run ends with the
+// store's error, its workers stopped and joined, no job left running; the
+// next run finishes the campaign.
+TEST(campaign_executor, a_store_error_ends_the_run_with_the_error_and_loses_no_job) {
+  TempDir t;
+  Store store(t.path / "c.db");
+  const CampaignSpec spec =
+      fake_campaign("store-error", {json::object({{"sleep", 0.3}})}, {1, 2, 3, 4});
+  Database other(t.path / "c.db");
+  other.exec(
+      "CREATE TRIGGER full_disk BEFORE UPDATE OF state ON jobs WHEN NEW.state = 'running' "
+      "AND (SELECT COUNT(*) FROM jobs WHERE state = 'running') >= 1 "
+      "BEGIN SELECT RAISE(ABORT, 'database or disk is full'); END");
+  EXPECT_THROW(run_sweep(store, spec, fake_options(2)), SqliteError);
+  other.exec("DROP TRIGGER full_disk");
+  const std::int64_t cid = store.campaigns().at(0).id;
+  EXPECT_EQ(store.job_counts(cid).running, 0);
+
+  const SweepReport r = run_sweep(store, spec, fake_options(2));
+  EXPECT_EQ(r.state, CampaignState::finished);
+  EXPECT_EQ(r.counts.succeeded, 4);
+}
+
 TEST(campaign_executor, finished_jobs_are_reused_and_rerun_on_request) {
   TempDir t;
   Store store(t.path / "c.db");
@@ -256,7 +323,8 @@ TEST(campaign_executor, oversubscribed_jobs_wait_passively) {
       if (l.rfind("env ", 0) == 0) env.push_back(l);
     return env;
   };
-  const std::vector<std::string> over = env_lines("over", cores, 2);
+  // One more single-thread job than cores (job threads never exceed the cores).
+  const std::vector<std::string> over = env_lines("over", cores + 1, 1);
   const std::vector<std::string> within = env_lines("within", 1, 1);
   if (saved) setenv("OMP_WAIT_POLICY", saved_value.c_str(), 1);
   EXPECT_EQ(over, std::vector<std::string>(2, "env OMP_WAIT_POLICY=passive"));

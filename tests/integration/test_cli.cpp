@@ -71,4 +71,29 @@ TEST(cli, bad_input_names_the_field_and_rule) {
   std::filesystem::remove(bad);
 }
 
+// More threads than the machine has cores are refused before the OpenMP
+// runtime is asked for them (100000 crash it).
+TEST(cli, run_threads_are_capped_by_the_machine) {
+  const std::string scene =
+      std::string(SPLAT_SOURCE_DIR) + "/scenes/elastic_sphere_bounce_axisym.json";
+  const auto out = std::filesystem::temp_directory_path() / "splat_cli_threads";
+  const auto o = run_splat("run " + scene + " --out " + out.string() + " --threads 100000");
+  EXPECT_EQ(o.code, 2) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("--threads"), std::string::npos) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("cores of this machine"), std::string::npos) << o.stdout_text;
+  std::filesystem::remove_all(out);
+}
+
+// A number beyond double in an override names the override, not nlohmann's
+// exception.
+TEST(cli, an_override_beyond_double_names_the_override) {
+  const std::string scene = std::string(SPLAT_SOURCE_DIR) + "/scenes/verification/two_mass.json";
+  const auto o = run_splat("run " + scene + " --out '' --set /two_mass/V0=1e400");
+  EXPECT_EQ(o.code, 2) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("/two_mass/V0=1e400"), std::string::npos) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("outside the range of a double"), std::string::npos)
+      << o.stdout_text;
+  EXPECT_EQ(o.stdout_text.find("json.exception"), std::string::npos) << o.stdout_text;
+}
+
 }  // namespace

@@ -7,10 +7,12 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <thread>
 
 #include "campaign/process.hpp"
+#include "campaign/sqlite.hpp"
 #include "campaign/store.hpp"
 #include "support/temp_dir.hpp"
 
@@ -164,6 +166,48 @@ TEST(campaign_store, cancellation_marks_queued_jobs_and_the_campaign) {
   // Cancelled jobs run again when the campaign is started again.
   const AddPointsStats st = s.add_points(c, {point("{}", 2.0, "h2")}, false);
   EXPECT_EQ(st.jobs_requeued, 1);
+}
+
+// A graceful stop during a refinement round cancels refinement jobs too;
+// opening the campaign again queues every one of them, not just the grid's.
+TEST(campaign_store, reopening_requeues_cancelled_refinement_jobs) {
+  TempDir t;
+  Store s(t.path / "c.db");
+  const std::vector<NewPoint> grid = {point("{}", 1.0, "h1"), point("{}", 2.0, "h2")};
+  const auto c = s.open_campaign(campaign_named("c"), grid, false).id;
+  NewPoint refine = point("{}", 1.5, "h3");
+  refine.point.origin = "refine";
+  s.add_points(c, {refine}, false);
+  EXPECT_EQ(s.cancel_queued_jobs(c, "stopped"), 3);
+  const OpenedCampaign again = s.open_campaign(campaign_named("c"), grid, false);
+  EXPECT_EQ(again.id, c);
+  EXPECT_EQ(again.points.jobs_requeued, 3);
+  EXPECT_EQ(s.job_counts(c).queued, 3);
+  EXPECT_EQ(s.job("h3")->state, JobState::queued);
+  EXPECT_EQ(s.job("h3")->exit_reason, "requeued after cancellation");
+}
+
+// Another connection holds the write lock longer than one attempt waits
+// (the busy timeout): the finished job's result is written once the lock is
+// free, never dropped.
+TEST(campaign_store, a_write_lock_held_past_the_busy_timeout_is_waited_out) {
+  TempDir t;
+  Store s(t.path / "c.db", 50);
+  const auto c = s.open_campaign(campaign_named("c"));
+  s.add_points(c, {point("{}", 1.0, "h1")}, false);
+  ASSERT_TRUE(s.claim_next_job(c, this_process_owner(), host_name()));
+  Database other(t.path / "c.db");
+  other.exec("BEGIN IMMEDIATE");
+  std::thread release([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+    other.exec("COMMIT");
+  });
+  const ResultRecord r{"h1", "stick", "canned", "{}", "", 0.0};
+  EXPECT_NO_THROW(s.finish_job("h1", JobState::succeeded, "stick: canned", 1.0, 1, r));
+  release.join();
+  EXPECT_EQ(s.job("h1")->state, JobState::succeeded);
+  ASSERT_TRUE(s.result("h1"));
+  EXPECT_EQ(s.result("h1")->outcome, "stick");
 }
 
 TEST(campaign_store, windows_round_trip) {
