@@ -1,0 +1,50 @@
+// The general radial return of strength_model.hpp (law_return) with the
+// Zerilli-Armstrong law: it converges, and the returned stress lies on the
+// flow surface, at every plastic strain, rate and temperature an impact
+// visits, including eps_p = 0 (unbounded slope) and the melt (no strength).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solver/material/strength_model.hpp"
+
+namespace splat {
+namespace {
+
+ZerilliArmstrongParams copper() {
+  return {.C0 = 46.5e6,
+          .C2 = 890e6,
+          .C3 = 0.0028,
+          .C4 = 0.000115,
+          .eps_dot_0 = 1.0,
+          .T_ref = 300.0,
+          .T_melt = 1356.0};
+}
+
+TEST(law_return, lands_on_the_flow_surface_everywhere) {
+  const ZerilliArmstrongParams za = copper();
+  const ModelSwitches sw;
+  const double G = 46e9;  // Pa
+  for (double eps_p : {0.0, 1e-6, 0.01, 1.0, 5.0}) {
+    for (double rate : {1e-3, 1.0, 1e4, 1e7, 1e9}) {
+      for (double T : {300.0, 900.0, 1355.0, 1400.0}) {
+        const double dt = 1e-9;
+        // A trial stress 1.5 times the flow stress at the imposed rate, plus
+        // what the elastic predictor of one step adds.
+        const double sigma = flow_stress(za, sw, eps_p, rate, T).value;
+        const double q_trial = 1.5 * sigma + 3.0 * G * rate * dt + 1e6;
+        const LawReturn r = law_return(za, sw, q_trial, G, 0.95, eps_p, dt, T);
+        SCOPED_TRACE(::testing::Message() << "eps_p " << eps_p << " rate " << rate << " T " << T);
+        ASSERT_TRUE(r.converged);
+        EXPECT_LT(r.iterations, 60);
+        const double dp = r.delta_eps_p;
+        ASSERT_GE(dp, 0.0);
+        const double on_surface = 0.95 * flow_stress(za, sw, eps_p + dp, dp / dt, T).value;
+        EXPECT_NEAR(q_trial - 3.0 * G * dp, on_surface, 1e-9 * q_trial);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace splat
