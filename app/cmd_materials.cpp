@@ -90,6 +90,12 @@ ShownUnit shown_unit(Quantity q) {
       return {" K", 1.0};
     case Quantity::inverse_temperature:
       return {" 1/K", 1.0};
+    case Quantity::shear_modulus:
+      return {" GPa", 1e-9};
+    case Quantity::density:
+      return {" kg/m^3", 1.0};
+    case Quantity::molar_mass:
+      return {" kg/mol", 1.0};
     case Quantity::dimensionless:
       break;
   }

@@ -17,6 +17,8 @@ mutations=(
   "solver/material/zerilli_armstrong.cpp|std::exp(-za.C3 * temp|std::exp(za.C3 * temp|uniaxial_zerilli_armstrong.*"
   "solver/material/zerilli_armstrong.cpp|za.C4 * temp * ln_rate|0.9 * za.C4 * temp * ln_rate|uniaxial_zerilli_armstrong.isothermal*"
   "solver/material/zerilli_armstrong.cpp|const double hard = za.C2 * root * thermal;|const double hard = za.C2 * root * root * thermal;|uniaxial_zerilli_armstrong.*"
+  "solver/material/preston_tonks_wallace.cpp|std::erf(w.kappa * T_hat|std::erf(1.1 * w.kappa * T_hat|uniaxial_preston_tonks_wallace.*"
+  "solver/material/preston_tonks_wallace.cpp|return {tau_s + a / w.p * std::log(inner)|return {tau_s - a / w.p * std::log(inner)|uniaxial_preston_tonks_wallace.*"
   "solver/material/strength_model.hpp|const double g = q_trial - three_g * dp - r.sigma_y;|const double g = q_trial - 1.02 * three_g * dp - r.sigma_y;|uniaxial_zerilli_armstrong.*"
   "solver/material/point_update.cpp|s *= std::max(q_trial - 3.0 * G_d * dp|s *= std::max(q_trial - 2.9 * G_d * dp|uniaxial_johnson_cook.*"
   "solver/material/point_update.cpp|st.T += mc.chi * w * J_new|st.T += w * J_new|adiabatic_heating.*"

@@ -172,6 +172,7 @@ inline constexpr UnitSlip unit_slips[] = {
     {"g/cm^3", "kg/m^3", 1e3, 0.0},
     {"degrees Celsius", "K", 1.0, 273.15},
     {"kJ/(kg K)", "J/(kg K)", 1e3, 0.0},
+    {"g/mol", "kg/mol", 1e-3, 0.0},
 };
 
 std::optional<MagnitudeRange> metal_range(Quantity q) {
@@ -184,6 +185,12 @@ std::optional<MagnitudeRange> metal_range(Quantity q) {
       return MagnitudeRange{50.0, 1500.0, false, "K", "50 K to 1500 K"};
     case Quantity::melting_temperature:
       return MagnitudeRange{300.0, 4500.0, false, "K", "300 K to 4500 K"};
+    case Quantity::shear_modulus:
+      return MagnitudeRange{1e9, 1e12, false, "Pa", "1 GPa to 1000 GPa"};
+    case Quantity::density:
+      return MagnitudeRange{500.0, 25000.0, false, "kg/m^3", "500 to 25000 kg/m^3"};
+    case Quantity::molar_mass:
+      return MagnitudeRange{0.006, 0.3, false, "kg/mol", "0.006 to 0.3 kg/mol"};
     case Quantity::dimensionless:
     case Quantity::rate:
     case Quantity::inverse_temperature:

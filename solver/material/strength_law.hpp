@@ -17,6 +17,9 @@ enum class Quantity {
   room_temperature,     // 1 .. 1000 K
   melting_temperature,  // 300 .. 4500 K
   inverse_temperature,  // 1/K
+  shear_modulus,        // a metal's: 1 GPa .. 1000 GPa, Pa
+  density,              // a metal's: 500 .. 25000 kg/m^3
+  molar_mass,           // a metal's: 0.006 .. 0.3 kg/mol
 };
 
 // One parameter of the law with parameter struct P.

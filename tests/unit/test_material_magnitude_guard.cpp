@@ -49,6 +49,14 @@ TEST(material_magnitude_guard, every_law_and_every_guarded_field) {
   za["strength"]["C2"] = 8.9e15;  // MPa converted twice
   EXPECT_NE(message_at(za, "/strength/C2").find("twice"), std::string::npos);
 
+  json ptw = material_document("cu-ofhc-ptw");
+  ptw["strength"]["M"] = 63.546;    // g/mol
+  ptw["strength"]["G"] = 45.78;     // GPa
+  ptw["strength"]["rho"] = 8.9375;  // g/cm^3
+  EXPECT_NE(message_at(ptw, "/strength/M").find("g/mol"), std::string::npos);
+  EXPECT_NE(message_at(ptw, "/strength/G").find("GPa"), std::string::npos);
+  EXPECT_NE(message_at(ptw, "/strength/rho").find("g/cm^3"), std::string::npos);
+
   json cu = material_document("cu-thesis");
   cu["density"] = 8.96;            // g/cm^3
   cu["elastic"]["E"] = 124.0;      // GPa
