@@ -37,7 +37,7 @@ int run_mat_point(const MatPointOptions& o) {
   req.strain_rate = o.strain_rate;
   req.max_strain = o.max_strain;
   req.steps = o.steps;
-  req.temperature = o.temperature.value_or(req.material.strength.T_ref);
+  req.temperature = o.temperature.value_or(strength_references(req.material.strength).T_ref);
   req.switches.adiabatic_heating = !o.isothermal;
   req.switches.damage = !o.no_damage;
   req.switches.thermal_softening = !o.no_thermal_softening;
@@ -84,9 +84,9 @@ void register_mat_point(CLI::App& app, CommandTable& commands) {
   sub->add_flag("--isothermal", opts->isothermal, "No adiabatic heating");
   sub->add_flag("--no-damage", opts->no_damage, "Switch damage off");
   sub->add_flag("--no-thermal-softening", opts->no_thermal_softening,
-                "Switch the Johnson-Cook thermal softening term off");
+                "Switch the temperature dependence of the flow stress off (at T_ref)");
   sub->add_flag("--no-rate-hardening", opts->no_rate_hardening,
-                "Switch the Johnson-Cook strain-rate term off");
+                "Switch the rate dependence of the flow stress off (at eps_dot_0)");
   sub->add_option("--length", opts->length,
                   "Characteristic length for the fracture-energy damage law, m")
       ->capture_default_str();

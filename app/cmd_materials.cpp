@@ -1,7 +1,8 @@
 // splat materials: the material library compiled into the binary.
 //   splat materials              table of the library (SI units, stresses in
-//                                MPa, moduli in GPa), then where each
-//                                material's numbers come from
+//                                MPa, moduli in GPa) with the strength law of
+//                                each material, its parameters, then where
+//                                each material's numbers come from
 //   splat materials --json       the array of every library document
 //   splat materials --show NAME  one document as written, a library name or a
 //                                JSON file, checked first: an invalid one
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "app/commands.hpp"
@@ -70,19 +72,66 @@ void print_wrapped(const std::string& first, const std::string& text, std::size_
   std::printf("%s\n", line.c_str());
 }
 
+// The unit a law parameter is shown in, and the factor from SI to it.
+struct ShownUnit {
+  const char* text;
+  double per_si;
+};
+
+ShownUnit shown_unit(Quantity q) {
+  switch (q) {
+    case Quantity::yield_stress:
+    case Quantity::hardening_stress:
+      return {" MPa", 1e-6};
+    case Quantity::rate:
+      return {" 1/s", 1.0};
+    case Quantity::room_temperature:
+    case Quantity::melting_temperature:
+      return {" K", 1.0};
+    case Quantity::inverse_temperature:
+      return {" 1/K", 1.0};
+    case Quantity::shear_modulus:
+      return {" GPa", 1e-9};
+    case Quantity::density:
+      return {" kg/m^3", 1.0};
+    case Quantity::molar_mass:
+      return {" kg/mol", 1.0};
+    case Quantity::dimensionless:
+      break;
+  }
+  return {"", 1.0};
+}
+
+// The parameters of a strength law with their units (stresses in MPa).
+std::string law_parameters(const StrengthModel& strength) {
+  return std::visit(
+      [](const auto& law) {
+        std::string text;
+        for (const auto& f : law.fields()) {
+          const ShownUnit u = shown_unit(f.quantity);
+          char buf[80];
+          std::snprintf(buf, sizeof buf, "%s%s %g%s", text.empty() ? "" : ", ", f.name,
+                        law.*f.member * u.per_si, u.text);
+          text += buf;
+        }
+        return text;
+      },
+      strength);
+}
+
 int print_table() {
   using Row = std::vector<std::string>;
   std::vector<Row> rows = {
-      {"name", "rho", "E", "nu", "A", "B", "n", "C", "m", "T_melt", "c_p", "damage"},
-      {"", "kg/m^3", "GPa", "-", "MPa", "MPa", "-", "-", "-", "K", "J/(kg K)", "initiation"},
+      {"name", "strength law", "rho", "E", "nu", "yield", "T_melt", "c_p", "damage"},
+      {"", "", "kg/m^3", "GPa", "-", "MPa", "K", "J/(kg K)", "initiation"},
   };
   std::vector<Material> materials;
   for (const std::string& name : material_names()) {
     const Material m = load_material(name);
-    const JohnsonCookParams& j = m.strength;
-    rows.push_back({m.name, fixed(m.density, 0), fixed(m.elastic.E / 1e9, 1),
-                    fixed(m.elastic.nu, 3), fixed(j.A / 1e6, 1), fixed(j.B / 1e6, 1), fixed(j.n, 3),
-                    fixed(j.C, 4), fixed(j.m, 3), fixed(j.T_melt, 0), fixed(m.thermal.c_p, 1),
+    rows.push_back({m.name, strength_model_name(m.strength), fixed(m.density, 0),
+                    fixed(m.elastic.E / 1e9, 1), fixed(m.elastic.nu, 3),
+                    fixed(initial_yield_stress(m.strength) / 1e6, 1),
+                    fixed(strength_references(m.strength).T_melt, 0), fixed(m.thermal.c_p, 1),
                     initiation_text(m.damage.initiation)});
     materials.push_back(m);
   }
@@ -95,12 +144,18 @@ int print_table() {
     std::string line;
     for (std::size_t c = 0; c < columns; ++c) {
       const std::string pad(width[c] - r[c].size(), ' ');
-      const bool left = c == 0 || c + 1 == columns;  // names left, numbers right
+      const bool left = c <= 1 || c + 1 == columns;  // names left, numbers right
       if (c > 0) line += "  ";
       line += left ? r[c] + pad : pad + r[c];
     }
     while (!line.empty() && line.back() == ' ') line.pop_back();
     std::printf("%s\n", line.c_str());
+  }
+  std::printf("\nstrength laws (yield: flow stress at eps_p = 0, eps_dot_0 and T_ref):\n");
+  for (const Material& m : materials) {
+    print_wrapped("  " + m.name + ":",
+                  std::string(strength_model_name(m.strength)) + ": " + law_parameters(m.strength),
+                  20, 100);
   }
   std::printf("\nsources:\n");
   for (const Material& m : materials) print_wrapped("  " + m.name + ":", m.source, 20, 100);

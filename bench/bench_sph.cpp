@@ -33,8 +33,8 @@ Material aluminium() {
   m.name = "al-deck";
   m.density = 2700.0;
   m.elastic = {70.2e9, 0.3};
-  m.strength.A = 60e6, m.strength.B = 140e6, m.strength.n = 0.42, m.strength.C = 0.01;
-  m.strength.m = 1.0, m.strength.T_ref = 300.0, m.strength.T_melt = 916.0;
+  m.strength = JohnsonCookParams{
+      .A = 60e6, .B = 140e6, .n = 0.42, .C = 0.01, .m = 1.0, .T_ref = 300.0, .T_melt = 916.0};
   m.thermal.c_p = 900.0;
   return m;
 }

@@ -173,7 +173,8 @@ void ImpactRun::cohesive_zone(const Model& model, ImpactSummary& r) const {
   // the weaker material's initial yield stress when none is.
   AdhesionParams law = *c.settings().adhesion;
   if (law.cap_at_flow_stress) {
-    const double initial = std::min(mp.strength.A, ms->strength.A);
+    const double initial =
+        std::min(initial_yield_stress(mp.strength), initial_yield_stress(ms->strength));
     const double now = c.stats().bond_strength;
     law.sigma_c = link_strength(law, now > 0.0 ? now : initial);
   }

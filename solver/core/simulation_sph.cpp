@@ -26,7 +26,8 @@ bool Simulation::Impl::sph_internal_forces_all(RunSummary& s) {
     if (r.return_failed) {
       s.outcome = RunOutcome::unstable;
       s.stop_reason = "return-mapping";
-      s.reason = "the Johnson-Cook return mapping did not converge in body '" + body.name + "'";
+      s.reason =
+          "the return mapping of the strength law did not converge in body '" + body.name + "'";
       return false;
     }
     if (r.inverted > 0) {

@@ -8,7 +8,7 @@
 
 #include "solver/input/material_io.hpp"
 #include "solver/input/schema.hpp"
-#include "solver/material/johnson_cook.hpp"
+#include "solver/material/strength_model.hpp"
 
 namespace splat {
 namespace {
@@ -58,12 +58,11 @@ Material resolve(const json& m, const std::string& pointer) {
   }
 }
 
-// Johnson-Cook flow stress at eps_p = 1, 1e7 /s and T_ref: the stress a
-// strongly deforming particle reaches in a cold-spray impact.
+// Flow stress at eps_p = 1, 1e7 /s and T_ref: the stress a strongly
+// deforming particle reaches in a cold-spray impact.
 double impact_flow_stress(const Material& m) {
-  const JohnsonCookParams& jc = m.strength;
-  const double rate = 1.0 + jc.C * std::log(std::max(1e7 / jc.eps_dot_0, 1.0));
-  return (jc.A + jc.B) * rate;
+  const double T_ref = strength_references(m.strength).T_ref;
+  return flow_stress(m.strength, ModelSwitches{}, 1.0, 1e7, T_ref).value;
 }
 
 // P-wave speed of the undamaged material, m/s.
@@ -148,7 +147,8 @@ ExpandedImpact expand_particle_impact(const json& doc) {
       // least as readily as the particle (its yield stress below the
       // particle's impact flow stress): it jets too and a mesh would tangle.
       const bool sph_substrate =
-          substrate_disc == "sph" || (substrate_disc == "auto" && ms.strength.A < sigma_p);
+          substrate_disc == "sph" ||
+          (substrate_disc == "auto" && initial_yield_stress(ms.strength) < sigma_p);
       const std::string sym = angle != 0.0 ? "full" : "quarter";
       c.model = (sph_substrate ? "sph-3d-" : "sph-on-fe-3d-") + sym;
       reasons.push_back(sph_asked ? std::string("SPH particle as asked")
@@ -160,7 +160,7 @@ ExpandedImpact expand_particle_impact(const json& doc) {
                             ? (substrate_disc == "sph"
                                    ? std::string("SPH substrate as asked")
                                    : "SPH substrate: its yield stress " +
-                                         std::to_string(ms.strength.A / 1e6) +
+                                         std::to_string(initial_yield_stress(ms.strength) / 1e6) +
                                          " MPa is below the particle's flow stress " +
                                          std::to_string(sigma_p / 1e6) + " MPa, so it jets too")
                             : "FE substrate");
@@ -251,9 +251,10 @@ ExpandedImpact expand_particle_impact(const json& doc) {
     c.rigid_substrate = true;
     reasons.push_back("rigid substrate as asked");
   } else if (substrate_kind == "auto" && !has_adhesion && c.model != "two-mass" &&
-             ms.strength.A >= k_rigid_factor * sigma_p) {
+             initial_yield_stress(ms.strength) >= k_rigid_factor * sigma_p) {
     c.rigid_substrate = true;
-    reasons.push_back("rigid substrate: its yield stress " + std::to_string(ms.strength.A / 1e6) +
+    reasons.push_back("rigid substrate: its yield stress " +
+                      std::to_string(initial_yield_stress(ms.strength) / 1e6) +
                       " MPa is at least 3x the particle's flow stress " +
                       std::to_string(sigma_p / 1e6) + " MPa, so it cannot yield");
   }
@@ -332,12 +333,13 @@ ExpandedImpact expand_particle_impact(const json& doc) {
                       std::to_string(R / h) + " across R)");
   }
 
-  json p = {{"name", "particle"},
-            {"material", particle.at("material")},
-            {"initial",
-             {{"velocity", vec(v * std::sin(rad), 0.0, -v * std::cos(rad))},
-              {"temperature", particle.value("temperature", mp.strength.T_ref)}}},
-            {"switches", switches(damage)}};
+  json p = {
+      {"name", "particle"},
+      {"material", particle.at("material")},
+      {"initial",
+       {{"velocity", vec(v * std::sin(rad), 0.0, -v * std::cos(rad))},
+        {"temperature", particle.value("temperature", strength_references(mp.strength).T_ref)}}},
+      {"switches", switches(damage)}};
   if (sph) {
     // Ball centre R + 0.1 spacing above the surface (particle centres lie
     // within R of it; the pinballs, radius h / 2, start just touching).
@@ -370,10 +372,12 @@ ExpandedImpact expand_particle_impact(const json& doc) {
     interactions.push_back(
         {{"type", "rigid-wall"}, {"point", vec(0, 0, 0)}, {"normal", vec(0, 0, 1)}});
   } else {
-    json s = {{"name", "substrate"},
-              {"material", substrate.value("material", particle.at("material"))},
-              {"initial", {{"temperature", substrate.value("temperature", ms.strength.T_ref)}}},
-              {"switches", switches(damage)}};
+    json s = {
+        {"name", "substrate"},
+        {"material", substrate.value("material", particle.at("material"))},
+        {"initial",
+         {{"temperature", substrate.value("temperature", strength_references(ms.strength).T_ref)}}},
+        {"switches", switches(damage)}};
     if (sph_substrate) {
       json block_sph = sph_settings;
       if (!block_sph.contains("lattice")) block_sph["lattice"] = "cubic";

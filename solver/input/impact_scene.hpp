@@ -17,10 +17,10 @@
 //   angle != 0                       -> fe-3d-full (an oblique impact has one
 //                                       symmetry plane at most)
 //   angle == 0                       -> fe-axisym
-//   substrate "rigid", or "auto" with no adhesion asked and a substrate yield
-//   stress A_s >= 3 sigma_p (sigma_p: the particle's Johnson-Cook flow stress at
-//   eps_p = 1, 1e7 /s, T_ref; 3 sigma_p bounds the contact pressure a
-//   flattening particle exerts, Tabor) -> rigid wall instead of a substrate body
+//   substrate "rigid", or "auto" with no adhesion asked and a substrate
+//   initial yield stress sigma_0s >= 3 sigma_p (sigma_p: the particle's flow
+//   stress at eps_p = 1, 1e7 /s, T_ref; 3 sigma_p bounds the contact pressure
+//   a flattening particle exerts, Tabor) -> rigid wall instead of a substrate body
 //   no adhesion block                -> plain contact, no adhesion work
 //   no D_adh_max and no erosion      -> damage switched off in both bodies
 // Geometry (scene coordinates, z up, impact point at the origin):

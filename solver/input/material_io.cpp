@@ -1,8 +1,12 @@
 #include "solver/input/material_io.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <string_view>
+#include <utility>
+#include <variant>
 
 #include "solver/input/embedded.hpp"
 
@@ -111,6 +115,137 @@ bool is_no_damage(const DamageParams& d) {
          same_cubic(s.high, none.shear.high);
 }
 
+// Calls fn(Law{}) for the alternative of StrengthModel whose "model" name is
+// `model`; false when there is none.
+template <class F>
+bool with_law_named(const std::string& model, F&& fn) {
+  return [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return ((std::variant_alternative_t<I, StrengthModel>::model == model &&
+             (fn(std::variant_alternative_t<I, StrengthModel>{}), true)) ||
+            ...);
+  }
+  (std::make_index_sequence<std::variant_size_v<StrengthModel>>{});
+}
+
+StrengthModel strength_from_json(const json& st) {
+  StrengthModel out;
+  with_law_named(st.at("model").get<std::string>(), [&](auto law) {
+    for (const auto& f : law.fields()) law.*f.member = st.at(f.name).template get<double>();
+    out = law;
+  });
+  return out;
+}
+
+json strength_to_json(const StrengthModel& strength) {
+  return std::visit(
+      [](const auto& law) {
+        json st = {{"model", law.model}};
+        for (const auto& f : law.fields()) st[f.name] = law.*f.member;
+        return st;
+      },
+      strength);
+}
+
+// What metals have: a value outside [lo, hi] is refused, and the units a
+// slip most likely wrote it in are named.
+struct MagnitudeRange {
+  double lo, hi;       // bounds, in the unit
+  bool zero_ok;        // 0 is a meaningful value too (no hardening)
+  const char* unit;    // the unit the document uses
+  const char* bounds;  // lo and hi in words
+};
+
+// A unit a value may have been written in by mistake: value * to_si +
+// offset is the value in si_unit.
+struct UnitSlip {
+  const char* unit;
+  const char* si_unit;
+  double to_si;
+  double offset;
+};
+
+inline constexpr UnitSlip unit_slips[] = {
+    {"MPa", "Pa", 1e6, 0.0},
+    {"GPa", "Pa", 1e9, 0.0},
+    {"kPa", "Pa", 1e3, 0.0},
+    {"MPa multiplied by 1e6 twice", "Pa", 1e-6, 0.0},
+    {"g/cm^3", "kg/m^3", 1e3, 0.0},
+    {"degrees Celsius", "K", 1.0, 273.15},
+    {"kJ/(kg K)", "J/(kg K)", 1e3, 0.0},
+    {"g/mol", "kg/mol", 1e-3, 0.0},
+};
+
+std::optional<MagnitudeRange> metal_range(Quantity q) {
+  switch (q) {
+    case Quantity::yield_stress:
+      return MagnitudeRange{1e6, 1e10, false, "Pa", "1 MPa to 10 GPa"};
+    case Quantity::hardening_stress:
+      return MagnitudeRange{1e6, 1e10, true, "Pa", "0 or 1 MPa to 10 GPa"};
+    case Quantity::room_temperature:
+      return MagnitudeRange{50.0, 1500.0, false, "K", "50 K to 1500 K"};
+    case Quantity::melting_temperature:
+      return MagnitudeRange{300.0, 4500.0, false, "K", "300 K to 4500 K"};
+    case Quantity::shear_modulus:
+      return MagnitudeRange{1e9, 1e12, false, "Pa", "1 GPa to 1000 GPa"};
+    case Quantity::density:
+      return MagnitudeRange{500.0, 25000.0, false, "kg/m^3", "500 to 25000 kg/m^3"};
+    case Quantity::molar_mass:
+      return MagnitudeRange{0.006, 0.3, false, "kg/mol", "0.006 to 0.3 kg/mol"};
+    case Quantity::dimensionless:
+    case Quantity::rate:
+    case Quantity::inverse_temperature:
+      break;
+  }
+  return std::nullopt;
+}
+
+std::string number_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
+// The refusal of `value` at `pointer`, or nothing when it is in range.
+void check_magnitude(const json& doc, const std::vector<SchemaViolation>& schema_errors,
+                     const std::string& pointer, const MagnitudeRange& r,
+                     std::vector<SchemaViolation>& out) {
+  if (rejected(schema_errors, pointer)) return;
+  const std::optional<double> v = number_at(doc, pointer.c_str());
+  if (!v) return;
+  const auto inside = [&](double x) { return (r.zero_ok && x == 0.0) || (x >= r.lo && x <= r.hi); };
+  if (inside(*v)) return;
+  std::string hint;
+  for (const UnitSlip& u : unit_slips) {
+    const double si = *v * u.to_si + u.offset;
+    if (std::string_view(u.si_unit) == r.unit && inside(si)) {
+      hint = "; if it was meant in " + std::string(u.unit) + ", write " + number_text(si);
+      break;
+    }
+  }
+  out.push_back({pointer, number_text(*v) + " " + r.unit + " is outside what metals have (" +
+                              r.bounds + ")" + hint});
+}
+
+// Density, Young's modulus, specific heat and the strength law's stresses and
+// temperatures against what metals have (unit slips, e.g. "A": 163 where MPa
+// was meant, pass the schema's bounds).
+void check_metal_magnitudes(const json& doc, const std::vector<SchemaViolation>& schema_errors,
+                            std::vector<SchemaViolation>& out) {
+  check_magnitude(doc, schema_errors, "/density",
+                  {500.0, 25000.0, false, "kg/m^3", "500 to 25000 kg/m^3"}, out);
+  check_magnitude(doc, schema_errors, "/elastic/E", {1e9, 1.5e12, false, "Pa", "1 GPa to 1500 GPa"},
+                  out);
+  check_magnitude(doc, schema_errors, "/thermal/c_p",
+                  {50.0, 5000.0, false, "J/(kg K)", "50 to 5000 J/(kg K)"}, out);
+  with_law_named(string_at(doc, "/strength/model"), [&](const auto& law) {
+    for (const auto& f : law.fields()) {
+      if (const std::optional<MagnitudeRange> r = metal_range(f.quantity)) {
+        check_magnitude(doc, schema_errors, std::string("/strength/") + f.name, *r, out);
+      }
+    }
+  });
+}
+
 }  // namespace
 
 std::vector<SchemaViolation> material_violations(const json& doc) {
@@ -118,6 +253,7 @@ std::vector<SchemaViolation> material_violations(const json& doc) {
   const std::vector<SchemaViolation> schema_errors = out;
   check_order(doc, schema_errors, "/strength/T_ref", "/strength/T_melt", true,
               "must be > T_ref (K)", out);
+  if (doc.is_object()) check_metal_magnitudes(doc, schema_errors, out);
   if (doc.is_object() && doc.contains("damage")) {
     check_order(doc, schema_errors, "/damage/D_max", "/damage/initial_random_max", false,
                 "must be <= D_max (-)", out, DamageParams{}.D_max);
@@ -144,16 +280,7 @@ Material material_from_json(const json& doc) {
   m.elastic.E = el.at("E").get<double>();
   m.elastic.nu = el.at("nu").get<double>();
 
-  const json& st = doc.at("strength");
-  JohnsonCookParams& jc = m.strength;
-  jc.A = st.at("A").get<double>();
-  jc.B = st.at("B").get<double>();
-  jc.n = st.at("n").get<double>();
-  jc.C = st.at("C").get<double>();
-  jc.eps_dot_0 = st.at("eps_dot_0").get<double>();
-  jc.m = st.at("m").get<double>();
-  jc.T_ref = st.at("T_ref").get<double>();
-  jc.T_melt = st.at("T_melt").get<double>();
+  m.strength = strength_from_json(doc.at("strength"));
 
   const json& th = doc.at("thermal");
   m.thermal.c_p = th.at("c_p").get<double>();
@@ -200,22 +327,12 @@ Material material_from_json(const json& doc) {
 }
 
 json material_to_json(const Material& m) {
-  const JohnsonCookParams& jc = m.strength;
   json doc = {
       {"name", m.name},
       {"source", m.source},
       {"density", m.density},
       {"elastic", {{"E", m.elastic.E}, {"nu", m.elastic.nu}}},
-      {"strength",
-       {{"model", "johnson-cook"},
-        {"A", jc.A},
-        {"B", jc.B},
-        {"n", jc.n},
-        {"C", jc.C},
-        {"eps_dot_0", jc.eps_dot_0},
-        {"m", jc.m},
-        {"T_ref", jc.T_ref},
-        {"T_melt", jc.T_melt}}},
+      {"strength", strength_to_json(m.strength)},
       {"thermal", {{"c_p", m.thermal.c_p}, {"heat_fraction", m.thermal.heat_fraction}}},
   };
   json eos = {{"model", m.eos.model == EosModel::mie_gruneisen ? "mie-gruneisen" : "linear"}};

@@ -7,6 +7,14 @@
 //   /damage/initial_random_max: must be <= D_max (-)
 //   /damage/initiation/theta_max: must be > theta_min (-)
 //   /damage/initiation/rate_high: must be > rate_low (1/s)
+// and every magnitude against what metals have (density 500 to 25000 kg/m^3,
+// E 1 to 1500 GPa, c_p 50 to 5000 J/(kg K), a strength law's stresses 1 MPa
+// to 10 GPa (hardening stresses may be 0), T_ref 50 to 1500 K, T_melt 300 to
+// 4500 K), naming the unit the value was likely written in:
+//   /strength/A: 163 Pa is outside what metals have (1 MPa to 10 GPa); if it
+//   was meant in MPa, write 1.63e+08
+// The "strength" object is read and written by the parameter list of its law
+// (P::fields(), solver/material/strength_law.hpp).
 // Defaults for optional fields are those of the Material struct, which equal
 // the schema's "default" values (heat_fraction 0.9, D_max 0.9,
 // initial_random_max 0); a document without "damage" has no damage.

@@ -407,7 +407,7 @@ BodySpec parse_body(const json& j, const std::string& p, const std::filesystem::
                    "must be [0, 0, 0] for fe-axisym bodies, which cannot spin (rad/s)");
     }
   }
-  b.temperature = value_or(initial, "temperature", b.material.strength.T_ref);
+  b.temperature = value_or(initial, "temperature", strength_references(b.material.strength).T_ref);
   b.seed = value_or(initial, "seed", 1ULL);
 
   const json& sw = member_or_empty(j, "switches");

@@ -37,14 +37,16 @@ inline constexpr double min_failure_strain = 1e-6;  // -
 // Largest shear stress (sigma_1 - sigma_3) / 2 of a symmetric stress, Pa.
 double max_shear_stress(const Mat3& sigma);
 
-inline double jc_failure_strain(const JohnsonCookFailureParams& d, const JohnsonCookParams& jc,
+// The reference rate and homologous temperature T* = (T - T_ref) / (T_melt -
+// T_ref) are those of the material's strength law (`ref`).
+inline double jc_failure_strain(const JohnsonCookFailureParams& d, const StrengthReferences& ref,
                                 bool rate_term, bool thermal_term, double triaxiality,
                                 double eps_dot_p, double T) {
   double eps_f = d.D1 + d.D2 * std::exp(d.D3 * triaxiality);
-  if (rate_term && eps_dot_p > jc.eps_dot_0)
-    eps_f *= 1.0 + d.D4 * std::log(eps_dot_p / jc.eps_dot_0);
+  if (rate_term && eps_dot_p > ref.eps_dot_0)
+    eps_f *= 1.0 + d.D4 * std::log(eps_dot_p / ref.eps_dot_0);
   if (thermal_term) {
-    const double t_star = std::clamp((T - jc.T_ref) / (jc.T_melt - jc.T_ref), 0.0, 1.0);
+    const double t_star = std::clamp((T - ref.T_ref) / (ref.T_melt - ref.T_ref), 0.0, 1.0);
     eps_f *= 1.0 + d.D5 * t_star;
   }
   return std::max(eps_f, min_failure_strain);

@@ -8,18 +8,43 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "solver/common/simd_lanes.hpp"
-#include "solver/material/material.hpp"
+#include "solver/material/model_switches.hpp"
+#include "solver/material/strength_law.hpp"
 
 namespace splat {
 
-struct FlowStress {
-  double value;    // sigma_y, Pa
-  double d_eps_p;  // d sigma_y / d eps_p, Pa
-  double d_rate;   // d sigma_y / d eps_dot_p, Pa s
+// Johnson & Cook (1983), thesis eq. 1.26 (above).
+struct JohnsonCookParams {
+  static constexpr const char* model = "johnson-cook";
+  double A = 0.0;          // initial yield stress, Pa
+  double B = 0.0;          // hardening modulus, Pa
+  double n = 1.0;          // hardening exponent, -
+  double C = 0.0;          // strain-rate sensitivity, -
+  double eps_dot_0 = 1.0;  // reference plastic strain rate, 1/s
+  double m = 1.0;          // thermal softening exponent, -
+  double T_ref = 300.0;    // reference (room) temperature, K
+  double T_melt = 1000.0;  // melting temperature, K
+
+  static constexpr std::array<LawField<JohnsonCookParams>, 8> fields() {
+    using P = JohnsonCookParams;
+    return {{{"A", &P::A, Quantity::yield_stress},
+             {"B", &P::B, Quantity::hardening_stress},
+             {"n", &P::n, Quantity::dimensionless},
+             {"C", &P::C, Quantity::dimensionless},
+             {"eps_dot_0", &P::eps_dot_0, Quantity::rate},
+             {"m", &P::m, Quantity::dimensionless},
+             {"T_ref", &P::T_ref, Quantity::room_temperature},
+             {"T_melt", &P::T_melt, Quantity::melting_temperature}}};
+  }
 };
+
+inline StrengthReferences strength_references(const JohnsonCookParams& jc) {
+  return {jc.eps_dot_0, jc.T_ref, jc.T_melt};
+}
 
 inline double jc_thermal_factor(const JohnsonCookParams& jc, bool enabled, double T) {
   if (!enabled) return 1.0;
@@ -106,6 +131,12 @@ inline double jc_hardening(const JohnsonCookParams& jc, double eps_p) {
 // Flow stress and its partial derivatives at (eps_p, eps_dot_p, T).
 FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwitches& sw,
                                     double eps_p, double eps_dot_p, double T);
+
+// The same under the name every law gives its flow stress.
+inline FlowStress flow_stress(const JohnsonCookParams& jc, const ModelSwitches& sw, double eps_p,
+                              double eps_dot_p, double T) {
+  return johnson_cook_flow_stress(jc, sw, eps_p, eps_dot_p, T);
+}
 
 // Pieces of the radial return below shared with its lanes
 // (point_update_fast.hpp), on the number type V (double or lanes).

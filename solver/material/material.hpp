@@ -6,6 +6,9 @@
 #include <optional>
 #include <string>
 
+#include "solver/material/model_switches.hpp"
+#include "solver/material/strength_model.hpp"
+
 namespace splat {
 
 // Isotropic linear elasticity. Shear modulus G = E / (2 (1 + nu)),
@@ -16,20 +19,6 @@ struct ElasticParams {
 
   double shear_modulus() const { return E / (2.0 * (1.0 + nu)); }
   double bulk_modulus() const { return E / (3.0 * (1.0 - 2.0 * nu)); }
-};
-
-// Johnson-Cook flow stress, thesis eq. 1.26:
-//   sigma_y = (A + B eps_p^n) (1 + C ln(max(eps_dot_p / eps_dot_0, 1))) (1 - T*^m)
-//   T* = (T - T_ref) / (T_melt - T_ref), clamped to [0, 1].
-struct JohnsonCookParams {
-  double A = 0.0;          // initial yield stress, Pa
-  double B = 0.0;          // hardening modulus, Pa
-  double n = 1.0;          // hardening exponent, -
-  double C = 0.0;          // strain-rate sensitivity, -
-  double eps_dot_0 = 1.0;  // reference plastic strain rate, 1/s
-  double m = 1.0;          // thermal softening exponent, -
-  double T_ref = 300.0;    // reference (room) temperature, K
-  double T_melt = 1000.0;  // melting temperature, K
 };
 
 struct ThermalParams {
@@ -89,19 +78,10 @@ struct Material {
   std::string source;    // where the numbers come from
   double density = 0.0;  // reference mass density rho0, kg/m^3
   ElasticParams elastic;
-  JohnsonCookParams strength;
+  StrengthModel strength;  // the flow-stress law and its parameters
   ThermalParams thermal;
   EosParams eos;
   DamageParams damage;
-};
-
-// Switches a scene or the material-point driver may turn off; each removes the
-// work of its term entirely.
-struct ModelSwitches {
-  bool damage = true;             // damage initiation and evolution
-  bool thermal_softening = true;  // (1 - T*^m) term
-  bool rate_hardening = true;     // (1 + C ln eps_dot*) term
-  bool adiabatic_heating = true;  // plastic work raises the temperature
 };
 
 }  // namespace splat

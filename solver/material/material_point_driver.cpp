@@ -71,7 +71,7 @@ MaterialPointResult run_material_point(const MaterialPointRequest& r) {
   result.rows.push_back(make_row(0.0, 0.0, st, r.mode, 0));
 
   // Scale for the zero-lateral-stress tolerance.
-  const double stress_scale = std::max(m.strength.A, 1e-3 * m.elastic.E) + 1.0;
+  const double stress_scale = std::max(initial_yield_stress(m.strength), 1e-3 * m.elastic.E) + 1.0;
 
   for (int step = 1; step <= r.steps; ++step) {
     PointUpdateResult upd;

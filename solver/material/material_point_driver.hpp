@@ -1,6 +1,6 @@
 // Material-point driver: one point driven through a constant-rate homogeneous
 // deformation, the single-element test engineers use to calibrate and check
-// Johnson-Cook and damage parameters before simulating a body.
+// strength-law and damage parameters before simulating a body.
 //
 //  uniaxial-stress: axial stretch at constant true strain rate; the lateral
 //                   strain rates are iterated each step until the lateral

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <variant>
 
 #include "solver/common/isa.hpp"
 #include "solver/material/damage.hpp"
@@ -27,18 +28,39 @@ MaterialConstants derive_constants(const Material& m) {
     K_wave = std::max(c.K, c.rho0 * m.eos.mie_gruneisen->c0 * m.eos.mie_gruneisen->c0);
   }
   c.wave_speed = std::sqrt((K_wave + 4.0 * c.G / 3.0) / c.rho0);
-  c.jc_series = jc_series(m.strength);
+  if (const auto* jc = std::get_if<JohnsonCookParams>(&m.strength)) c.jc_series = jc_series(*jc);
   return c;
 }
+
+namespace {
+
+// The strength caches of a point (hardening, strength_scale, sigma_y_static)
+// at its eps_p, T and D, and sigma_y at its eps_dot_p: for Johnson-Cook,
+// A + B eps_p^n and (1 - D)(1 - T*^m) (its return and fast path use them);
+// for any other law, its undamaged flow stress at zero plastic rate and 1 - D.
+template <class Law>
+void set_strength(const Law& law, const ModelSwitches& sw, PointState& st) {
+  st.hardening = flow_stress(law, sw, st.eps_p, 0.0, st.T).value;
+  st.strength_scale = 1.0 - st.D;
+  st.sigma_y_static = st.strength_scale * st.hardening;
+  st.sigma_y = st.strength_scale * flow_stress(law, sw, st.eps_p, st.eps_dot_p, st.T).value;
+}
+
+void set_strength(const JohnsonCookParams& jc, const ModelSwitches& sw, PointState& st) {
+  st.hardening = jc_hardening(jc, st.eps_p);
+  st.strength_scale = (1.0 - st.D) * jc_thermal_factor(jc, sw.thermal_softening, st.T);
+  st.sigma_y_static =
+      (1.0 - st.D) * johnson_cook_flow_stress(jc, sw, st.eps_p, st.eps_dot_p, st.T).value;
+  st.sigma_y = st.sigma_y_static;
+}
+
+}  // namespace
 
 PointState initial_point_state(const Material& m, const ModelSwitches& sw, double T0, double D0) {
   PointState st;
   st.T = T0;
   st.D = sw.damage ? D0 : 0.0;
-  st.hardening = jc_hardening(m.strength, 0.0);
-  st.strength_scale = (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, T0);
-  st.sigma_y_static = (1.0 - st.D) * johnson_cook_flow_stress(m.strength, sw, 0.0, 0.0, T0).value;
-  st.sigma_y = st.sigma_y_static;
+  std::visit([&](const auto& law) { set_strength(law, sw, st); }, m.strength);
   st.sigma_y_peak = st.sigma_y;
   st.sigma_y_static_peak = st.sigma_y_static;
   return st;
@@ -103,8 +125,8 @@ void update_damage(const Material& m, const ModelSwitches& sw, PointState& st, d
     double eps_f = 0.0;
     if (dm.initiation == DamageInitiation::johnson_cook) {
       const double eta = q > 0.0 ? -st.p / q : 0.0;
-      eps_f = jc_failure_strain(dm.jc, m.strength, sw.rate_hardening, sw.thermal_softening, eta,
-                                eps_dot, st.T);
+      eps_f = jc_failure_strain(dm.jc, strength_references(m.strength), sw.rate_hardening,
+                                sw.thermal_softening, eta, eps_dot, st.T);
     } else {
       const double theta = shear_stress_ratio(dm.shear.k_s, st.p, q, max_shear_stress(st.cauchy()));
       eps_f = shear_failure_strain(dm.shear, theta, eps_dot);
@@ -164,7 +186,8 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
                                double J_new, double dt, double length) {
   // Most steps: point_update_fast (the same choice and bits as the lanes of
   // update_points and of the FE element loop).
-  if (is_symmetric(st.s) && is_symmetric(d_eps)) {
+  if (std::holds_alternative<JohnsonCookParams>(m.strength) && is_symmetric(st.s) &&
+      is_symmetric(d_eps)) {
     PointFields<double> f = point_fields(st);
     double de[6];
     for (int k = 0; k < 6; ++k) de[k] = d_eps(sym_row[k], sym_col[k]);
@@ -177,9 +200,74 @@ PointUpdateResult update_point(const Material& m, const MaterialConstants& mc,
   return update_point_general(m, mc, sw, st, d_eps, J_new, dt, length);
 }
 
-PointUpdateResult update_point_general(const Material& m, const MaterialConstants& mc,
-                                       const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
-                                       double J_new, double dt, double length) {
+namespace {
+
+// The plastic increment of a step and the strength terms at its end.
+struct PlasticReturn {
+  double delta_eps_p = 0.0;  // plastic strain increment, -
+  double sigma_y = 0.0;      // damaged flow stress of the increment, Pa
+  double hard = 0.0;         // Johnson-Cook: A + B eps_p^n at the end of the step, Pa
+  double rate = 1.0;         // Johnson-Cook: 1 + C ln(eps_dot_p / eps_dot_0) of the increment, -
+  int iterations = 0;        // return-mapping iterations
+  bool converged = true;
+};
+
+// Any law: the general radial return (strength_model.hpp) at the start
+// temperature and damage.
+template <class Law>
+PlasticReturn plastic_return(const Law& law, const MaterialConstants&, const ModelSwitches& sw,
+                             const PointState& st, double q_trial, double G_d, double dt) {
+  const LawReturn r = law_return(law, sw, q_trial, G_d, 1.0 - st.D, st.eps_p, dt, st.T);
+  return {r.delta_eps_p, r.sigma_y, 0.0, 1.0, r.iterations, r.converged};
+}
+
+// Johnson-Cook: its own return, seeded by the previous step's increment and
+// rate factor and the cached hardening and scale (johnson_cook_return).
+PlasticReturn plastic_return(const JohnsonCookParams& jc, const MaterialConstants& mc,
+                             const ModelSwitches& sw, const PointState& st, double q_trial,
+                             double G_d, double dt) {
+  const double scale = st.strength_scale;
+  // After a plastic step sigma_y = sigma_y_static R(eps_dot_p): the rate
+  // factor at the guess (the return's expansions start from it).
+  const double rate_guess =
+      st.eps_dot_p > 0.0 && st.sigma_y_static > 0.0 ? st.sigma_y / st.sigma_y_static : 0.0;
+  const ReturnMapResult rm =
+      johnson_cook_return(jc, sw.rate_hardening, q_trial, G_d, st.eps_p, dt, scale, st.hardening,
+                          st.eps_dot_p * dt, rate_guess, &mc.jc_series);
+  return {rm.delta_eps_p, scale * rm.hard_rate, rm.hard, rm.rate, rm.iterations, rm.converged};
+}
+
+// Any law: the strength caches after a plastic step moved eps_p, T or D.
+template <class Law>
+void end_strength(const Law& law, const MaterialConstants&, const ModelSwitches& sw, PointState& st,
+                  const PlasticReturn&, double, double, bool) {
+  set_strength(law, sw, st);
+}
+
+// Johnson-Cook: A + B eps_p^n from the return; an undamaged point's thermal
+// factor carried over a small heating step by a series
+// (jc_thermal_factor_after_heating).
+void end_strength(const JohnsonCookParams& jc, const MaterialConstants& mc, const ModelSwitches& sw,
+                  PointState& st, const PlasticReturn& ret, double T_old, double D_old,
+                  bool heated) {
+  const double scale = st.strength_scale;
+  st.hardening = ret.hard;
+  double end_scale = scale;
+  if (heated && st.D == 0.0 && D_old == 0.0 && sw.thermal_softening) {
+    end_scale = jc_thermal_factor_after_heating(jc, mc.jc_series, scale, T_old, st.T);
+  } else if (heated || st.D != D_old) {
+    end_scale = (1.0 - st.D) * jc_thermal_factor(jc, sw.thermal_softening, st.T);
+  }
+  st.strength_scale = end_scale;
+  st.sigma_y_static = end_scale * st.hardening;
+  st.sigma_y = st.sigma_y_static * ret.rate;
+}
+
+// The general update with the strength law `law` (update_point_general).
+template <class Law>
+PointUpdateResult update_with_law(const Law& law, const Material& m, const MaterialConstants& mc,
+                                  const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
+                                  double J_new, double dt, double length) {
   PointUpdateResult result;
   const double keep = 1.0 - st.D;
   const double G_d = keep * mc.G;
@@ -192,21 +280,13 @@ PointUpdateResult update_point_general(const Material& m, const MaterialConstant
   Mat3 s = st.s + 2.0 * G_d * deviator(d_eps);
   const double q_trial_sq = 1.5 * s.squaredNorm();
   double dp = 0.0;
-  // (1 - D)(1 - T*^m) and A + B eps_p^n at the start of the step, kept in the
-  // state by the last plastic step (or initial_point_state).
-  const double scale = st.strength_scale;
-  ReturnMapResult rm;
+  PlasticReturn ret;
   if (q_trial_sq > st.sigma_y_static * st.sigma_y_static) {
     const double q_trial = std::sqrt(q_trial_sq);
-    // After a plastic step sigma_y = sigma_y_static R(eps_dot_p): the rate
-    // factor at the guess (the return's expansions start from it).
-    const double rate_guess =
-        st.eps_dot_p > 0.0 && st.sigma_y_static > 0.0 ? st.sigma_y / st.sigma_y_static : 0.0;
-    rm = johnson_cook_return(m.strength, sw.rate_hardening, q_trial, G_d, st.eps_p, dt, scale,
-                             st.hardening, st.eps_dot_p * dt, rate_guess, &mc.jc_series);
-    dp = rm.delta_eps_p;
-    result.iterations = rm.iterations;
-    result.converged = rm.converged;
+    ret = plastic_return(law, mc, sw, st, q_trial, G_d, dt);
+    dp = ret.delta_eps_p;
+    result.iterations = ret.iterations;
+    result.converged = ret.converged;
     // Radial scaling of the trial deviator onto the yield surface.
     s *= std::max(q_trial - 3.0 * G_d * dp, 0.0) / q_trial;
   }
@@ -233,34 +313,35 @@ PointUpdateResult update_point_general(const Material& m, const MaterialConstant
   // Adiabatic heating: a fraction chi of the plastic work per unit current
   // volume, sigma_y dp, raises the temperature of mass rho = rho0 / J.
   if (dp > 0.0) {
-    const double rate_f = rm.rate;      // 1 + C ln(eps_dot_p / eps_dot_0) of this increment
-    st.hardening = rm.hard;             // A + B eps_p^n at the end of the step
-    st.sigma_y = scale * rm.hard_rate;  // flow stress of this increment
-    const double w = st.sigma_y * dp;   // plastic work, J/m^3 of current volume
+    st.sigma_y = ret.sigma_y;          // flow stress of this increment
+    const double w = st.sigma_y * dp;  // plastic work, J/m^3 of current volume
     st.plastic_work += J_new * w;
     const bool heated = sw.adiabatic_heating && w > 0.0;
     const double T_old = st.T;
     if (heated) st.T += mc.heating * (w * J_new);
     const double D_old = st.D;
     update_damage(m, sw, st, dp, dt, length);
-    // Temperature or damage moved: the strength at the end state changes. An
-    // undamaged point's scale is its thermal factor, carried over a small
-    // heating step by a series (jc_thermal_factor_after_heating).
-    double end_scale = scale;
-    if (heated && st.D == 0.0 && D_old == 0.0 && sw.thermal_softening) {
-      end_scale = jc_thermal_factor_after_heating(m.strength, mc.jc_series, scale, T_old, st.T);
-    } else if (heated || st.D != D_old) {
-      end_scale = (1.0 - st.D) * jc_thermal_factor(m.strength, sw.thermal_softening, st.T);
-    }
-    st.strength_scale = end_scale;
-    st.sigma_y_static = end_scale * st.hardening;
-    st.sigma_y = st.sigma_y_static * rate_f;
+    // Temperature or damage moved: the strength at the end state changes.
+    end_strength(law, mc, sw, st, ret, T_old, D_old, heated);
   } else {
     st.sigma_y = st.sigma_y_static;  // no plastic rate: no rate hardening
   }
   st.sigma_y_peak = std::max(st.sigma_y_peak, st.sigma_y);
   st.sigma_y_static_peak = std::max(st.sigma_y_static_peak, st.sigma_y_static);
   return result;
+}
+
+}  // namespace
+
+// The one place the strength law is chosen.
+PointUpdateResult update_point_general(const Material& m, const MaterialConstants& mc,
+                                       const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
+                                       double J_new, double dt, double length) {
+  return std::visit(
+      [&](const auto& law) {
+        return update_with_law(law, m, mc, sw, st, d_eps, J_new, dt, length);
+      },
+      m.strength);
 }
 
 // Groups of 8 points in lanes, compiled once per instruction set

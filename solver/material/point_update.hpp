@@ -1,5 +1,6 @@
 // The stress update of one material point over one time step: elasticity,
-// equation of state, Johnson-Cook plasticity with adiabatic heating, damage.
+// equation of state, plasticity with the material's strength law
+// (strength_model.hpp) and adiabatic heating, damage.
 // A pure function of its inputs; the loops over elements or particles that
 // call it live in the bodies, the time loop above them.
 #pragma once
@@ -46,13 +47,15 @@ struct PointState {
   double omega = 0.0;           // damage initiation indicator (initiated at 1), -
   double eps_p_init = -1.0;     // plastic strain at initiation, -1 before, -
   double sigma_y = 0.0;         // current (damaged) yield stress at the last plastic rate, Pa
-  double sigma_y_static = 0.0;  // (1 - D)(A + B eps_p^n)(1 - T*^m): yield stress at zero
-                                // plastic rate; eps_p, T and D change only in plastic steps,
-                                // so an elastic step needs no Johnson-Cook evaluation, Pa
-  double hardening = 0.0;       // A + B eps_p^n, Pa; with strength_scale, a cache kept by
-                                // update_point (eps_p, T, D change only there) so that a
+  double sigma_y_static = 0.0;  // yield stress at zero plastic rate, (1 - D) sigma_y(eps_p,
+                                // 0, T); eps_p, T and D change only in plastic steps, so an
+                                // elastic step needs no evaluation of the strength law, Pa
+  double hardening = 0.0;       // Johnson-Cook: A + B eps_p^n; other laws: the undamaged
+                                // sigma_y(eps_p, 0, T), Pa; with strength_scale, a cache kept
+                                // by update_point (eps_p, T, D change only there) so that a
                                 // plastic step starts without evaluating pow
-  double strength_scale = 1.0;  // (1 - D)(1 - T*^m), -; sigma_y_static = scale * hardening
+  double strength_scale = 1.0;  // Johnson-Cook: (1 - D)(1 - T*^m); other laws: 1 - D, -;
+                                // sigma_y_static = strength_scale * hardening
   double sigma_y_peak = 0.0;    // largest sigma_y seen (rate-dependent), Pa
   double plastic_work = 0.0;    // plastic work per unit reference volume, J/m^3
 

@@ -4,7 +4,7 @@
 // IEEE operations in the same order (the build has -ffp-contract=off), so a
 // point gets the same bits on either path, on any instruction set.
 //
-// It covers
+// It covers, for a material whose strength law is Johnson-Cook,
 //   - an elastic step (trial stress inside the yield surface), and
 //   - a plastic step that continues plastic flow: the radial return's first
 //     evaluation at the previous step's plastic increment, with B eps^n from
@@ -21,6 +21,8 @@
 // its unchanged state. Both paths make the same choice for the same point,
 // so a run's bits do not depend on which of them met a point first.
 #pragma once
+
+#include <variant>
 
 #include "solver/common/simd_lanes.hpp"
 #include "solver/material/eos.hpp"
@@ -77,7 +79,10 @@ SPLAT_LANE_INLINE LaneMask<V> point_update_fast(const Material& m, const Materia
                                                 const V de[6], const V& J_new, double dt,
                                                 V& evaluations) {
   using M = LaneMask<V>;
-  const JohnsonCookParams& jc = m.strength;
+  // Only Johnson-Cook is accelerated: a point of another law is not done.
+  const JohnsonCookParams* law = std::get_if<JohnsonCookParams>(&m.strength);
+  if (!law) return M{};
+  const JohnsonCookParams& jc = *law;
   const V G_d = (1.0 - st.D) * mc.G;
   const V two_g = 2.0 * G_d, three_g = 3.0 * G_d;
 

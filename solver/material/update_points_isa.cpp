@@ -11,6 +11,7 @@
 #include "solver/material/update_points_isa.hpp"
 
 #include <cstring>
+#include <variant>
 
 #include "solver/material/point_update_fast.hpp"
 
@@ -34,13 +35,15 @@ SPLAT_LANE_INLINE PointLane point_lanes(F&& f) {
 
 // Groups of 8 points in lanes (point_update_fast); a group's points that the
 // fast path does not cover, and the points past the last whole group, go
-// through update_point one by one.
+// through update_point one by one. The lanes accelerate Johnson-Cook only:
+// the points of another law all go through update_point.
 void update_points(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
                    PointState* states, const int* index, std::size_t n, const Mat3* d_eps,
                    const double* J_new, double dt, const double* length, PointUpdateResult* out) {
   constexpr int W = points_per_lane_group;
+  const std::size_t lanes_end = std::holds_alternative<JohnsonCookParams>(m.strength) ? n : 0;
   std::size_t k0 = 0;
-  for (; k0 + W <= n; k0 += W) {
+  for (; k0 + W <= lanes_end; k0 += W) {
     PointState* st[W];
     for (int l = 0; l < W; ++l) st[l] = &states[index[k0 + std::size_t(l)]];
     bool symmetric = true;

@@ -17,8 +17,8 @@ inline Material jc_copper() {
   m.name = "copper";
   m.density = 8960.0;
   m.elastic = {124e9, 0.34};
-  m.strength.A = 90e6, m.strength.B = 292e6, m.strength.n = 0.31, m.strength.C = 0.025;
-  m.strength.m = 1.09, m.strength.T_ref = 300.0, m.strength.T_melt = 1356.0;
+  m.strength = JohnsonCookParams{
+      .A = 90e6, .B = 292e6, .n = 0.31, .C = 0.025, .m = 1.09, .T_ref = 300.0, .T_melt = 1356.0};
   m.thermal.c_p = 385.0;
   return m;
 }
@@ -30,8 +30,8 @@ inline ModelSwitches no_damage() {
 }
 
 // Linear-elastic steel for scenes (round numbers): E 200 GPa, nu 0.3,
-// rho 7850 kg/m^3, and a Johnson-Cook yield stress of 100 GPa that no test
-// reaches.
+// rho 7850 kg/m^3, and a Johnson-Cook yield stress of 10 GPa (the largest a
+// material document may give) that no test reaches.
 inline constexpr double steel_E = 200e9;     // Pa
 inline constexpr double steel_nu = 0.3;      // -
 inline constexpr double steel_rho = 7850.0;  // kg/m^3
@@ -42,7 +42,7 @@ inline nlohmann::json elastic_steel_json() {
           {"elastic", {{"E", steel_E}, {"nu", steel_nu}}},
           {"strength",
            {{"model", "johnson-cook"},
-            {"A", 1e11},
+            {"A", 1e10},
             {"B", 0.0},
             {"n", 1.0},
             {"C", 0.0},

@@ -79,9 +79,14 @@ TEST(cohesive_law, erosion_on_either_side_only_with_a_limit) {
 // material point update that fills PointState.
 TEST(cohesive_law, static_peak_does_not_see_the_rate_factor) {
   Material m;
-  m.strength.A = 90e6, m.strength.B = 292e6, m.strength.n = 0.31, m.strength.C = 0.025;
-  m.strength.eps_dot_0 = 1.0, m.strength.m = 1.09, m.strength.T_ref = 300.0;
-  m.strength.T_melt = 1356.0;
+  m.strength = JohnsonCookParams{.A = 90e6,
+                                 .B = 292e6,
+                                 .n = 0.31,
+                                 .C = 0.025,
+                                 .eps_dot_0 = 1.0,
+                                 .m = 1.09,
+                                 .T_ref = 300.0,
+                                 .T_melt = 1356.0};
   m.elastic.E = 124e9, m.elastic.nu = 0.34, m.density = 8960.0;
   m.thermal.c_p = 385.0;
   ModelSwitches sw;

@@ -21,7 +21,7 @@ namespace {
 // The copper of the other tests (A 90 MPa, B 292 MPa, n 0.31, C 0.025,
 // m 1.09, T_ref 300 K, T_melt 1356 K).
 JohnsonCookParams copper() {
-  return test_support::jc_copper().strength;
+  return std::get<JohnsonCookParams>(test_support::jc_copper().strength);
 }
 
 TEST(johnson_cook_series, thermal_factor_after_one_heating_step) {
@@ -149,8 +149,8 @@ TEST(johnson_cook_series, cached_terms_stay_the_law_over_many_plastic_steps) {
     ASSERT_TRUE(r.converged);
     one_step += r.iterations == 1;
   }
-  const double hard = jc_hardening(m.strength, st.eps_p);
-  const double theta = jc_thermal_factor(m.strength, true, st.T);
+  const double hard = jc_hardening(std::get<JohnsonCookParams>(m.strength), st.eps_p);
+  const double theta = jc_thermal_factor(std::get<JohnsonCookParams>(m.strength), true, st.T);
   std::printf("eps_p %.4f, T %.2f K, one-step returns %d; hardening drift %.2g, scale drift %.2g\n",
               st.eps_p, st.T, one_step, st.hardening / hard - 1.0, st.strength_scale - theta);
   EXPECT_GT(st.eps_p, 9.0);
@@ -181,9 +181,10 @@ TEST(johnson_cook_series, cached_terms_stay_the_law_when_the_rate_varies) {
     ASSERT_TRUE(r.converged);
     two_evaluations += r.iterations == 2;
   }
-  const double hard = jc_hardening(m.strength, st.eps_p);
-  const double theta = jc_thermal_factor(m.strength, true, st.T);
-  const double rate_factor = jc_rate_factor(m.strength, true, st.eps_dot_p);
+  const double hard = jc_hardening(std::get<JohnsonCookParams>(m.strength), st.eps_p);
+  const double theta = jc_thermal_factor(std::get<JohnsonCookParams>(m.strength), true, st.T);
+  const double rate_factor =
+      jc_rate_factor(std::get<JohnsonCookParams>(m.strength), true, st.eps_dot_p);
   std::printf(
       "eps_p %.4f, T %.2f K, two-evaluation returns %d; drift: hardening %.2g, scale "
       "%.2g, rate factor %.2g\n",

@@ -41,15 +41,14 @@ void expect_same(const Material& a, const Material& b) {
   EXPECT_EQ(a.density, b.density);
   EXPECT_EQ(a.elastic.E, b.elastic.E);
   EXPECT_EQ(a.elastic.nu, b.elastic.nu);
-  const JohnsonCookParams &s = a.strength, &t = b.strength;
-  EXPECT_EQ(s.A, t.A);
-  EXPECT_EQ(s.B, t.B);
-  EXPECT_EQ(s.n, t.n);
-  EXPECT_EQ(s.C, t.C);
-  EXPECT_EQ(s.eps_dot_0, t.eps_dot_0);
-  EXPECT_EQ(s.m, t.m);
-  EXPECT_EQ(s.T_ref, t.T_ref);
-  EXPECT_EQ(s.T_melt, t.T_melt);
+  // Every parameter of the law, whichever it is.
+  ASSERT_EQ(a.strength.index(), b.strength.index());
+  std::visit(
+      [&](const auto& s) {
+        const auto& t = std::get<std::decay_t<decltype(s)>>(b.strength);
+        for (const auto& f : s.fields()) EXPECT_EQ(s.*f.member, t.*f.member) << f.name;
+      },
+      a.strength);
   EXPECT_EQ(a.thermal.c_p, b.thermal.c_p);
   EXPECT_EQ(a.thermal.heat_fraction, b.thermal.heat_fraction);
   EXPECT_EQ(a.eos.model, b.eos.model);
@@ -97,12 +96,12 @@ TEST(material_library, aluminium_of_the_thesis_tables) {
   EXPECT_EQ(m.density, 2710.0);
   EXPECT_EQ(m.elastic.E, 70.9e9);
   EXPECT_EQ(m.elastic.nu, 0.3);
-  EXPECT_EQ(m.strength.A, 148.4e6);
-  EXPECT_EQ(m.strength.B, 345.5e6);
-  EXPECT_EQ(m.strength.n, 0.183);
-  EXPECT_EQ(m.strength.C, 0.001);
-  EXPECT_EQ(m.strength.m, 0.895);
-  EXPECT_EQ(m.strength.T_melt, 916.0);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).A, 148.4e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).B, 345.5e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).n, 0.183);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).C, 0.001);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).m, 0.895);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).T_melt, 916.0);
   EXPECT_EQ(m.thermal.c_p, 904.0);
   EXPECT_EQ(m.damage.initiation, DamageInitiation::shear);
   EXPECT_EQ(m.damage.shear.k_s, 0.3);
@@ -123,25 +122,26 @@ TEST(material_library, aluminium_of_the_thesis_tables) {
 TEST(material_library, deck_sets_differ_from_the_tables_where_the_deck_says_so) {
   const Material al = load_material("al-deck");
   EXPECT_EQ(al.elastic.E, 70.2e9);
-  EXPECT_EQ(al.strength.A, 60e6);
-  EXPECT_EQ(al.strength.B, 140e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(al.strength).A, 60e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(al.strength).B, 140e6);
   EXPECT_EQ(al.damage.initial_random_max, 1e-4);
-  EXPECT_EQ(al.strength.m, load_material("al-thesis").strength.m);
+  EXPECT_EQ(std::get<JohnsonCookParams>(al.strength).m,
+            std::get<JohnsonCookParams>(load_material("al-thesis").strength).m);
   const Material cu = load_material("cu-deck");
-  EXPECT_EQ(cu.strength.A, 160e6);
-  EXPECT_EQ(cu.strength.B, 150e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(cu.strength).A, 160e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(cu.strength).B, 150e6);
   EXPECT_EQ(cu.damage.initial_random_max, 1e-4);
   EXPECT_EQ(cu.thermal.c_p, 385.0);
-  EXPECT_EQ(cu.strength.T_melt, 1356.0);
+  EXPECT_EQ(std::get<JohnsonCookParams>(cu.strength).T_melt, 1356.0);
   EXPECT_EQ(cu.damage.jc.D3, -3.03);
 }
 
 TEST(material_library, copper_has_unswapped_heat_capacity_and_melting_point) {
   const Material m = load_material("cu-thesis");
   EXPECT_EQ(m.thermal.c_p, 385.0);
-  EXPECT_EQ(m.strength.T_melt, 1356.0);
-  EXPECT_EQ(m.strength.A, 90e6);
-  EXPECT_EQ(m.strength.B, 292e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).T_melt, 1356.0);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).A, 90e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).B, 292e6);
   EXPECT_EQ(m.damage.initiation, DamageInitiation::johnson_cook);
   EXPECT_EQ(m.damage.jc.D1, 0.3);
   EXPECT_EQ(m.damage.jc.D2, 0.28);
@@ -154,13 +154,13 @@ TEST(material_library, copper_has_unswapped_heat_capacity_and_melting_point) {
 TEST(material_library, hopkinson_steel_and_ti6al4v) {
   const Material st = load_material("steel-hopkinson");
   EXPECT_EQ(st.thermal.heat_fraction, 0.8);
-  EXPECT_EQ(st.strength.T_ref, 293.15);
-  EXPECT_EQ(st.strength.A, 266e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(st.strength).T_ref, 293.15);
+  EXPECT_EQ(std::get<JohnsonCookParams>(st.strength).A, 266e6);
   EXPECT_EQ(st.damage.initiation, DamageInitiation::none);
   EXPECT_EQ(st.damage.initial_random_max, 0.0);
   const Material ti = load_material("ti6al4v-thesis");
-  EXPECT_EQ(ti.strength.A, 860e6);
-  EXPECT_EQ(ti.strength.B, 900e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(ti.strength).A, 860e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(ti.strength).B, 900e6);
   EXPECT_EQ(ti.thermal.c_p, 526.3);
   EXPECT_EQ(ti.damage.jc.D1, -0.09);
   EXPECT_EQ(ti.damage.jc.D3, -0.5);
@@ -178,13 +178,14 @@ TEST(material_library, numbers_make_physical_sense) {
     EXPECT_LT(m.density, 25000.0);
     EXPECT_GT(m.elastic.E, 10e9);
     EXPECT_LT(m.elastic.E, 500e9);
-    EXPECT_GT(m.strength.A, 10e6);
-    EXPECT_LT(m.strength.A + m.strength.B, 5e9);
+    const StrengthReferences ref = strength_references(m.strength);
+    EXPECT_GT(initial_yield_stress(m.strength), 5e6);  // annealed copper, PTW: 2 G y0 = 9 MPa
+    EXPECT_LT(flow_stress(m.strength, ModelSwitches{}, 1.0, ref.eps_dot_0, ref.T_ref).value, 5e9);
     EXPECT_GT(m.thermal.c_p, 100.0);
     EXPECT_LT(m.thermal.c_p, 2000.0);
-    EXPECT_GT(m.strength.T_melt, 600.0);
-    EXPECT_LT(m.strength.T_melt, 4000.0);
-    EXPECT_NEAR(m.strength.T_ref, 300.0, 10.0);
+    EXPECT_GT(ref.T_melt, 600.0);
+    EXPECT_LT(ref.T_melt, 4000.0);
+    EXPECT_NEAR(ref.T_ref, 300.0, 10.0);
     const double bulk_sound_speed = std::sqrt(m.elastic.bulk_modulus() / m.density);
     EXPECT_NEAR(m.eos.mie_gruneisen->c0 / bulk_sound_speed, 1.0, 0.2);
     if (m.damage.initiation == DamageInitiation::johnson_cook) {
@@ -284,8 +285,12 @@ TEST(material_checks, mie_gruneisen_model_without_parameters_is_rejected) {
 TEST(material_checks, schema_and_semantic_faults_are_reported_together) {
   json doc = with(material_document("cu-thesis"), "/strength/T_melt", 250.0);
   doc["strength"]["A"] = -1.0;
-  EXPECT_EQ(rejection(doc), (Violations{{"/strength/A", "must be >= 0 (Pa)"},
-                                        {"/strength/T_melt", "must be > T_ref (K)"}}));
+  EXPECT_EQ(rejection(doc),
+            (Violations{{"/strength/A", "must be >= 0 (Pa)"},
+                        {"/strength/T_melt", "must be > T_ref (K)"},
+                        {"/strength/T_melt",
+                         "250 K is outside what metals have (300 K to 4500 K); if it was meant "
+                         "in degrees Celsius, write 523.15"}}));
   // A field the schema rejected is not blamed twice.
   doc = with(material_document("cu-thesis"), "/strength/T_melt", -1.0);
   EXPECT_EQ(rejection(doc), (Violations{{"/strength/T_melt", "must be > 0 (K)"}}));
@@ -299,8 +304,8 @@ TEST(material_lookup, unknown_name_lists_the_library) {
     EXPECT_EQ(e.violations(),
               (Violations{{"",
                            "unknown material 'unobtainium' (known: al-deck, al-thesis, "
-                           "cu-deck, cu-thesis, steel-hopkinson, ti6al4v-thesis; or give a "
-                           "path to a JSON file)"}}));
+                           "cu-deck, cu-ofhc-ptw, cu-ofhc-za, cu-thesis, steel-hopkinson, "
+                           "ti6al4v-thesis; or give a path to a JSON file)"}}));
   }
 }
 
@@ -314,7 +319,7 @@ TEST(material_lookup, files_load_and_their_faults_are_reported) {
   std::ofstream(good) << doc.dump(2);
   const Material m = load_material(good.string());
   EXPECT_EQ(m.name, "my-copper");
-  EXPECT_EQ(m.strength.A, 100e6);
+  EXPECT_EQ(std::get<JohnsonCookParams>(m.strength).A, 100e6);
 
   const std::filesystem::path bad = dir / "bad.json";
   std::ofstream(bad) << with(doc, "/elastic/nu", 0.5).dump(2);

@@ -55,8 +55,9 @@ bool is_closed(const json& node) {
 
 TEST(material_schema, every_library_material_is_valid) {
   const std::vector<std::string> names = material_names();
-  EXPECT_EQ(names, (std::vector<std::string>{"al-deck", "al-thesis", "cu-deck", "cu-thesis",
-                                             "steel-hopkinson", "ti6al4v-thesis"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"al-deck", "al-thesis", "cu-deck", "cu-ofhc-ptw",
+                                             "cu-ofhc-za", "cu-thesis", "steel-hopkinson",
+                                             "ti6al4v-thesis"}));
   for (const std::string& name : names) {
     const json doc = library(name);
     EXPECT_EQ(check(doc), Violations{}) << name;
@@ -171,8 +172,24 @@ TEST(material_schema, bad_model_name_lists_the_allowed_values) {
                          R"(must be one of "none", "johnson-cook", "shear")"}}));
   EXPECT_EQ(check(with(library("cu-thesis"), "/eos/model", "ideal-gas")),
             (Violations{{"/eos/model", R"(must be one of "linear", "mie-gruneisen")"}}));
+  EXPECT_EQ(
+      check(with(library("cu-thesis"), "/strength/model", "steinberg-guinan")),
+      (Violations{
+          {"/strength/model",
+           R"(must be one of "johnson-cook", "zerilli-armstrong", "preston-tonks-wallace")"}}));
+}
+
+TEST(material_schema, fields_of_another_strength_law_are_unknown) {
   EXPECT_EQ(check(with(library("cu-thesis"), "/strength/model", "zerilli-armstrong")),
-            (Violations{{"/strength/model", R"(must be "johnson-cook")"}}));
+            (Violations{{"/strength/A", "unknown field"},
+                        {"/strength/B", "unknown field"},
+                        {"/strength/C", "unknown field"},
+                        {"/strength/m", "unknown field"},
+                        {"/strength/n", "unknown field"},
+                        {"/strength/C0", "required field is missing"},
+                        {"/strength/C2", "required field is missing"},
+                        {"/strength/C3", "required field is missing"},
+                        {"/strength/C4", "required field is missing"}}));
 }
 
 TEST(material_schema, fields_of_another_damage_model_are_unknown) {

@@ -145,6 +145,20 @@ TEST(point_update_lanes, match_update_point_with_damage) {
   expect_lanes_match_points(copper_damage(), ModelSwitches{}, 400, 7);
 }
 
+// A law the lanes do not accelerate (Zerilli-Armstrong): every point takes
+// the general path, with the same bits as update_point.
+TEST(point_update_lanes, match_update_point_for_a_law_without_lanes) {
+  Material m = test_support::jc_copper();
+  m.strength = ZerilliArmstrongParams{.C0 = 46.5e6,
+                                      .C2 = 890e6,
+                                      .C3 = 0.0028,
+                                      .C4 = 0.000115,
+                                      .eps_dot_0 = 1.0,
+                                      .T_ref = 300.0,
+                                      .T_melt = 1356.0};
+  expect_lanes_match_points(m, test_support::no_damage(), 400, 11);
+}
+
 // Plastic flow at 1e5 /s whose increments vary from step to step by
 // `noise` (relative): the fast path's cover of the plastic steps after the
 // onset, and the steps it ended in its second evaluation. Where it covers a

@@ -113,7 +113,7 @@ TEST(SceneIo, minimal_axisymmetric_scene) {
   const BodySpec& b = s.bodies[0];
   EXPECT_EQ(b.name, "particle");
   EXPECT_EQ(b.material.name, "cu-deck");
-  EXPECT_DOUBLE_EQ(b.material.strength.A, 160e6);
+  EXPECT_DOUBLE_EQ(std::get<JohnsonCookParams>(b.material.strength).A, 160e6);
   EXPECT_EQ(b.geometry.type, GeometryType::half_disc);
   EXPECT_DOUBLE_EQ(b.geometry.radius, 10e-6);
   EXPECT_DOUBLE_EQ(b.geometry.centre.z(), 10e-6);
@@ -131,7 +131,8 @@ TEST(SceneIo, minimal_axisymmetric_scene) {
 TEST(SceneIo, defaults_are_filled) {
   const Scene s = scene_from_json(axisym_scene());
   const BodySpec& b = s.bodies[0];
-  EXPECT_DOUBLE_EQ(b.temperature, b.material.strength.T_ref);  // 300 K for cu-deck
+  EXPECT_DOUBLE_EQ(b.temperature,
+                   std::get<JohnsonCookParams>(b.material.strength).T_ref);  // 300 K for cu-deck
   EXPECT_EQ(b.seed, 1u);
   EXPECT_EQ(b.sector, SectorKind::full);
   EXPECT_FALSE(b.grading.enabled);
@@ -249,14 +250,15 @@ TEST(SceneIo, library_inline_and_base_override_materials) {
   doc["bodies"][0]["material"] = inline_material;
   Scene s = scene_from_json(doc);
   EXPECT_EQ(s.bodies[0].material.name, "my-al");
-  EXPECT_DOUBLE_EQ(s.bodies[0].material.strength.A, 123e6);
+  EXPECT_DOUBLE_EQ(std::get<JohnsonCookParams>(s.bodies[0].material.strength).A, 123e6);
 
   doc["bodies"][0]["material"] = {{"base", "cu-deck"}, {"strength", {{"A", 100e6}}}};
   s = scene_from_json(doc);
   const Material cu = load_material("cu-deck");
   EXPECT_EQ(s.bodies[0].material.name, "cu-deck");
-  EXPECT_DOUBLE_EQ(s.bodies[0].material.strength.A, 100e6);
-  EXPECT_DOUBLE_EQ(s.bodies[0].material.strength.B, cu.strength.B);  // kept from the base
+  EXPECT_DOUBLE_EQ(std::get<JohnsonCookParams>(s.bodies[0].material.strength).A, 100e6);
+  EXPECT_DOUBLE_EQ(std::get<JohnsonCookParams>(s.bodies[0].material.strength).B,
+                   std::get<JohnsonCookParams>(cu.strength).B);  // kept from the base
   EXPECT_DOUBLE_EQ(s.bodies[0].material.density, cu.density);
 }
 
@@ -274,7 +276,7 @@ TEST(SceneIo, material_file_relative_to_the_scene_file) {
 
   const LoadedScene loaded = load_scene(dir / "scene.json", {"/time/end_time=2e-8"});
   EXPECT_EQ(loaded.scene.bodies[0].material.name, "soft-cu");
-  EXPECT_DOUBLE_EQ(loaded.scene.bodies[0].material.strength.A, 50e6);
+  EXPECT_DOUBLE_EQ(std::get<JohnsonCookParams>(loaded.scene.bodies[0].material.strength).A, 50e6);
   EXPECT_DOUBLE_EQ(loaded.scene.time.end_time, 2e-8);
   std::filesystem::remove_all(dir);
 }

@@ -27,9 +27,7 @@ Material elastic_aluminium() {
   m.name = "elastic-al";
   m.density = 2700.0;
   m.elastic = {70e9, 0.3};
-  m.strength.A = 1e30;
-  m.strength.B = 0.0;
-  m.strength.T_melt = 900.0;
+  m.strength = JohnsonCookParams{.A = 1e30, .B = 0.0, .T_melt = 900.0};
   m.thermal.c_p = 900.0;
   return m;
 }
@@ -257,8 +255,8 @@ TEST(SphReference, HomogeneousDeformationAcrossReferenceUpdates) {
   Material mat;
   mat.density = 2710.0;
   mat.elastic = {70.2e9, 0.3};
-  mat.strength.A = 60e6, mat.strength.B = 140e6, mat.strength.n = 0.183, mat.strength.C = 0.001;
-  mat.strength.m = 0.895, mat.strength.T_melt = 916.0;
+  mat.strength =
+      JohnsonCookParams{.A = 60e6, .B = 140e6, .n = 0.183, .C = 0.001, .m = 0.895, .T_melt = 916.0};
   mat.thermal.c_p = 904.0;
   ModelSwitches sw;
   sw.damage = false;

@@ -31,7 +31,7 @@ using nlohmann::json;
 using test_support::run_scene;
 
 json elastic_al() {
-  return json::parse(R"({"base": "al-thesis", "strength": {"A": 148.4e9}})");
+  return json::parse(R"({"base": "al-thesis", "strength": {"A": 10e9}})");
 }
 json elastic_switches() {
   return json::parse(

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "exact/johnson_cook_closed_form.hpp"
 #include "solver/input/material_io.hpp"
@@ -16,7 +17,7 @@ namespace splat {
 namespace {
 
 exact::JcCurve curve_of(const Material& m) {
-  const JohnsonCookParams& j = m.strength;
+  const JohnsonCookParams& j = std::get<JohnsonCookParams>(m.strength);
   return {j.A, j.B, j.n, j.C, j.eps_dot_0, j.m, j.T_ref, j.T_melt};
 }
 
@@ -28,7 +29,7 @@ MaterialPointRequest request(const std::string& material, LoadingMode mode, doub
   r.strain_rate = rate;
   r.max_strain = max_strain;
   r.steps = steps;
-  r.temperature = r.material.strength.T_ref;
+  r.temperature = std::get<JohnsonCookParams>(r.material.strength).T_ref;
   return r;
 }
 
@@ -141,9 +142,11 @@ TEST(jc_ductile_damage, initiates_at_failure_strain_and_grows_linearly) {
       ASSERT_TRUE(res.converged) << res.message;
       const Material& m = r.material;
       const JohnsonCookFailureParams& d = m.damage.jc;
-      const double t_star = T_offset / (m.strength.T_melt - m.strength.T_ref);
-      const double eps_f = exact::jc_failure_strain(d.D1, d.D2, d.D3, d.D4, d.D5, 1.0 / 3.0,
-                                                    rate / m.strength.eps_dot_0, t_star);
+      const double t_star = T_offset / (std::get<JohnsonCookParams>(m.strength).T_melt -
+                                        std::get<JohnsonCookParams>(m.strength).T_ref);
+      const double eps_f = exact::jc_failure_strain(
+          d.D1, d.D2, d.D3, d.D4, d.D5, 1.0 / 3.0,
+          rate / std::get<JohnsonCookParams>(m.strength).eps_dot_0, t_star);
       double first_damaged_eps = -1.0;
       for (const MaterialPointRow& row : res.rows) {
         if (row.time > 0.0) {
@@ -235,7 +238,7 @@ TEST(objective_rate, jaumann_rotation_matches_rigid_rotation) {
 // the rotation at large gamma: without it sigma_xy = G gamma. Tolerance 1e-4 G.
 TEST(simple_shear, elastic_jaumann_closed_form_at_large_shear) {
   MaterialPointRequest r = request("cu-thesis", LoadingMode::simple_shear, 1.0, 2.0, 20000);
-  r.material.strength.A = 1e15;  // stays elastic
+  std::get<JohnsonCookParams>(r.material.strength).A = 1e15;  // stays elastic
   r.switches.damage = false;
   const MaterialPointResult res = run_material_point(r);
   ASSERT_TRUE(res.converged);

@@ -30,8 +30,7 @@ Material elastic_aluminium() {
   m.name = "elastic-al";
   m.density = 2700.0;
   m.elastic = {70e9, 0.3};
-  m.strength.A = 1e30;
-  m.strength.T_melt = 900.0;
+  m.strength = JohnsonCookParams{.A = 1e30, .T_melt = 900.0};
   m.thermal.c_p = 900.0;
   return m;
 }
