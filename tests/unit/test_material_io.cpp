@@ -304,7 +304,7 @@ TEST(material_lookup, unknown_name_lists_the_library) {
     EXPECT_EQ(e.violations(),
               (Violations{{"",
                            "unknown material 'unobtainium' (known: al-deck, al-thesis, "
-                           "cu-deck, cu-ofhc-ptw, cu-ofhc-za, cu-thesis, steel-hopkinson, "
+                           "cu-deck, cu-ofhc-ptw, cu-thesis, steel-hopkinson, "
                            "ti6al4v-thesis; or give a path to a JSON file)"}}));
   }
 }

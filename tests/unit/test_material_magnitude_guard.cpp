@@ -42,7 +42,8 @@ TEST(material_magnitude_guard, yield_stress_in_mpa_is_refused_naming_the_field) 
 }
 
 TEST(material_magnitude_guard, every_law_and_every_guarded_field) {
-  json za = material_document("cu-ofhc-za");
+  json za =
+      material_document(std::string(SPLAT_SOURCE_DIR) + "/tests/data/za_test_parameters.json");
   za["strength"]["C0"] = 46.5;  // MPa
   EXPECT_NE(message_at(za, "/strength/C0").find("MPa"), std::string::npos);
   za["strength"]["C0"] = 46.5e6;
