@@ -2,9 +2,9 @@
 // Wallace 2003, J. Appl. Phys. 93, 211, eqs. for tau_s, tau_y and tau at
 // constant rate and temperature) for the material-point verification tests,
 // written from the published equations independently of the solver's
-// kernels (no solver header is included here): the flow stress, its slope
-// in plastic strain, and the temperature of adiabatic uniaxial loading by
-// the ODE dT / d eps_p = beta_heat sigma(eps_p, rate, T).
+// kernels (no solver header is included here): the flow stress and its
+// slope in plastic strain (the adiabatic temperature is
+// tests/support/flow_curve_checks.hpp's).
 #pragma once
 
 #include <algorithm>
@@ -54,24 +54,6 @@ inline double ptw_hardening_slope(const PtwCurve& c, double eps_p, double rate, 
   const double decay =
       std::exp(-c.p * c.theta * std::max(eps_p, 0.0) / ((c.s0 - ty) * (std::exp(b) - 1.0)));
   return 2.0 * c.G * c.theta * std::exp(-b) * decay / (1.0 - (1.0 - std::exp(-b)) * decay);
-}
-
-// Temperature after adiabatic plastic straining to eps_p at a constant rate
-// from T0, by classical Runge-Kutta in `steps` equal steps; beta_heat = chi /
-// (rho c_p).
-inline double ptw_adiabatic_temperature(const PtwCurve& c, double rate, double T0, double beta_heat,
-                                        double eps_p, int steps) {
-  const double h = eps_p / steps;
-  double T = T0;
-  for (int i = 0; i < steps; ++i) {
-    const double e = i * h;
-    const double k1 = beta_heat * ptw_flow_stress(c, e, rate, T);
-    const double k2 = beta_heat * ptw_flow_stress(c, e + 0.5 * h, rate, T + 0.5 * h * k1);
-    const double k3 = beta_heat * ptw_flow_stress(c, e + 0.5 * h, rate, T + 0.5 * h * k2);
-    const double k4 = beta_heat * ptw_flow_stress(c, e + h, rate, T + h * k3);
-    T += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-  }
-  return T;
 }
 
 }  // namespace splat::exact

@@ -1,9 +1,8 @@
 // Closed forms of the Zerilli-Armstrong FCC flow stress (Zerilli & Armstrong
 // 1987) for the material-point verification tests, written from the
 // published equation independently of the solver's kernels (no solver header
-// is included here): the flow stress, its slope in plastic strain, and the
-// temperature of adiabatic uniaxial loading by the ODE
-// dT / d eps_p = beta sigma(eps_p, rate, T), beta = chi / (rho c_p).
+// is included here): the flow stress and its slope in plastic strain (the
+// adiabatic temperature is tests/support/flow_curve_checks.hpp's).
 #pragma once
 
 #include <algorithm>
@@ -28,23 +27,6 @@ inline double za_hardening_slope(const ZaCurve& c, double eps_p, double rate, do
   if (eps_p <= 0.0 || T >= c.T_melt) return 0.0;
   const double ln_rate = std::log(std::max(rate / c.eps_dot_0, 1.0));
   return 0.5 * c.C2 / std::sqrt(eps_p) * std::exp(-c.C3 * T + c.C4 * T * ln_rate);
-}
-
-// Temperature after adiabatic plastic straining to eps_p at a constant rate
-// from T0: the ODE above by classical Runge-Kutta in `steps` equal steps.
-inline double za_adiabatic_temperature(const ZaCurve& c, double rate, double T0, double beta,
-                                       double eps_p, int steps) {
-  const double h = eps_p / steps;
-  double T = T0;
-  for (int i = 0; i < steps; ++i) {
-    const double e = i * h;
-    const double k1 = beta * za_flow_stress(c, e, rate, T);
-    const double k2 = beta * za_flow_stress(c, e + 0.5 * h, rate, T + 0.5 * h * k1);
-    const double k3 = beta * za_flow_stress(c, e + 0.5 * h, rate, T + 0.5 * h * k2);
-    const double k4 = beta * za_flow_stress(c, e + h, rate, T + h * k3);
-    T += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-  }
-  return T;
 }
 
 }  // namespace splat::exact
