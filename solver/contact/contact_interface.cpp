@@ -61,40 +61,6 @@ std::vector<int> elements_of_node(const FeBody& body, int g) {
   return out;
 }
 
-// The element of body b that holds every node of face f of s, an active one
-// where there is one (-1: none).
-int face_element(const ContactSurface& s, std::size_t f, const FeBody& b) {
-  std::vector<int> common = elements_of_node(b, s.faces[f][0]);
-  for (int k = 1; k < s.nodes_per_face(); ++k) {
-    const std::vector<int> e = elements_of_node(b, s.faces[f][k]);
-    std::vector<int> both;
-    std::set_intersection(common.begin(), common.end(), e.begin(), e.end(),
-                          std::back_inserter(both));
-    common = std::move(both);
-  }
-  for (int e : common) {
-    if (b.active[static_cast<std::size_t>(e)]) return e;
-  }
-  return common.empty() ? -1 : common.front();
-}
-
-// Fills s.behind: per face, the nodes of its element that are not on it.
-void set_behind_nodes(ContactSurface& s, const FeBody& b) {
-  const int npf = s.nodes_per_face();
-  s.behind.assign(s.faces.size(), {-1, -1, -1, -1});
-  for (std::size_t f = 0; f < s.faces.size(); ++f) {
-    const int e = face_element(s, f, b);
-    if (e < 0) continue;
-    int n = 0;
-    for (int a = 0; a < b.nodes_per_element() && n < 4; ++a) {
-      const int g = b.conn[static_cast<std::size_t>(e)][static_cast<std::size_t>(a)];
-      if (std::find(s.faces[f].begin(), s.faces[f].begin() + npf, g) == s.faces[f].begin() + npf) {
-        s.behind[f][static_cast<std::size_t>(n++)] = g;
-      }
-    }
-  }
-}
-
 }  // namespace
 
 void ContactInterface::attach_bodies(const std::vector<FeBody>& bodies, std::size_t mb,
@@ -110,12 +76,19 @@ void ContactInterface::attach_bodies(const std::vector<FeBody>& bodies, std::siz
     slave_elem_entries_.insert(slave_elem_entries_.end(), e.begin(), e.end());
     slave_elem_offsets_.push_back(static_cast<int>(slave_elem_entries_.size()));
   }
+  const int npf = master_.nodes_per_face();
   master_face_element_.assign(master_.faces.size(), -1);
   for (std::size_t f = 0; f < master_.faces.size(); ++f) {
-    master_face_element_[f] = face_element(master_, f, master);
+    std::vector<int> common = elements_of_node(master, master_.faces[f][0]);
+    for (int k = 1; k < npf; ++k) {
+      const std::vector<int> e = elements_of_node(master, master_.faces[f][k]);
+      std::vector<int> both;
+      std::set_intersection(common.begin(), common.end(), e.begin(), e.end(),
+                            std::back_inserter(both));
+      common = std::move(both);
+    }
+    if (!common.empty()) master_face_element_[f] = common.front();
   }
-  set_behind_nodes(master_, master);
-  set_behind_nodes(slave_, slave);
 }
 
 void ContactInterface::attach_bodies(const std::vector<FeBody>& fe, const std::vector<SphBody>& sph,
@@ -140,15 +113,22 @@ void ContactInterface::attach_bodies(const std::vector<FeBody>& fe, const std::v
       slave_elem_entries_.insert(slave_elem_entries_.end(), e.begin(), e.end());
       slave_elem_offsets_.push_back(static_cast<int>(slave_elem_entries_.size()));
     }
-    set_behind_nodes(slave_, b);
   }
   if (!master_is_sph) {
     const FeBody& b = fe[master];
+    const int npf = master_.nodes_per_face();
     master_face_element_.assign(master_.faces.size(), -1);
     for (std::size_t f = 0; f < master_.faces.size(); ++f) {
-      master_face_element_[f] = face_element(master_, f, b);
+      std::vector<int> common = elements_of_node(b, master_.faces[f][0]);
+      for (int k = 1; k < npf; ++k) {
+        const std::vector<int> e = elements_of_node(b, master_.faces[f][k]);
+        std::vector<int> both;
+        std::set_intersection(common.begin(), common.end(), e.begin(), e.end(),
+                              std::back_inserter(both));
+        common = std::move(both);
+      }
+      if (!common.empty()) master_face_element_[f] = common.front();
     }
-    set_behind_nodes(master_, b);
   }
 }
 
@@ -217,7 +197,6 @@ void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const N
   }
   if (faces.size() != master_.faces.size()) {
     master_ = make_contact_surface(master_.kind, std::move(faces));
-    set_behind_nodes(master_, mb);
   }
   // Slave: the boundary of its active elements; per-node records by node id.
   const FeBody& sb = bodies[slave_index_];
@@ -254,7 +233,6 @@ void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const N
     }
   }
   slave_ = std::move(slave);
-  set_behind_nodes(slave_, sb);
   last_multiplier_.clear();  // keyed by slave face indices, which changed
   touched_ = std::move(touched);
   pressed_ = std::move(pressed);

@@ -112,21 +112,6 @@ bool better(const DetectedPair& a, const DetectedPair& b) {
   return a.face < b.face;
 }
 
-// Thickness of face f's element along the face's outward normal n: the
-// smallest distance behind the face of the element's other nodes, m;
-// infinite when the surface does not know its elements or the element is
-// folded (a node of it in front of the face).
-double element_thickness(const ContactSurface& s, int f, const std::vector<Vec3>& x,
-                         const Vec3& n) {
-  double t = std::numeric_limits<double>::infinity();
-  if (s.behind.empty()) return t;
-  const Vec3& on_face = x[s.faces[f][0]];
-  for (int b : s.behind[f]) {
-    if (b >= 0) t = std::min(t, (on_face - x[b]).dot(n));
-  }
-  return t > 0.0 ? t : std::numeric_limits<double>::infinity();
-}
-
 // Tests slave node k against face f and keeps the better pair in `best`, or,
 // with `all`, appends every pair in range to it.
 void consider(const ContactSurface& master, int f, int k, const Vec3& p, double r_slave,
@@ -140,7 +125,6 @@ void consider(const ContactSurface& master, int f, int k, const Vec3& p, double 
   c.geometry.gap -= r_slave;
   if (c.geometry.distance_outside > st.outside_tolerance) return;
   if (c.geometry.gap > st.search_margin * size || c.geometry.gap < -st.capture_depth * size) return;
-  if (c.geometry.gap < -0.5 * element_thickness(master, f, x, c.geometry.normal)) return;
   if (all) {
     all->push_back(c);
     return;

@@ -20,9 +20,7 @@
 // A slave node pairs with the master face that contains its projection
 // (within a small tolerance) and is nearest along the normal, provided its gap
 // lies in [-capture_depth, search_margin] (both as fractions of the face's
-// size: its length, or the square root of its area) and, where the surface
-// knows its elements (`behind`), is no deeper than half the element's
-// thickness behind the face. The bucket search puts
+// size: its length, or the square root of its area). The bucket search puts
 // each face into the cells of a uniform grid that its bounding box, grown by
 // its capture range, overlaps; a slave node then only tests the faces of its
 // own cell. find_pairs_all_pairs tests every face and must give identical
@@ -52,13 +50,6 @@ struct ContactSurface {
   // Pinball radius of each node (same order as `nodes`), m; empty for FE
   // surfaces (radius 0). Required for particle_pinball surfaces.
   std::vector<double> radius;
-  // FE faces: the nodes of each face's element that are not on the face (-1
-  // padded; empty when unknown). A gap deeper than half the element's
-  // thickness behind the face (the distance of those nodes from it) is not
-  // accepted: a node that deep is nearer the element's opposite face, and a
-  // thin element (a jetting rim, a layer exposed by erosion) would otherwise
-  // catch the nodes touching its other side.
-  std::vector<std::array<int, 4>> behind;
 
   int nodes_per_face() const {
     switch (kind) {

@@ -159,34 +159,6 @@ TEST(ContactSearch, buckets_match_all_pairs_hexahedra) {
   }
 }
 
-// A sliver element (1 um long, 20 nm thick) whose top face was exposed by
-// erosion: a slave node touching its bottom face lies 25 nm behind the top
-// face, well within the capture depth of the face's length (0.5 um), yet
-// nearer the other side: with the element's nodes known the top face does
-// not capture it; a node 5 nm behind the top face still pairs with it.
-TEST(ContactSearch, a_thin_element_does_not_capture_nodes_beyond_its_middle) {
-  // Master nodes: top face 0 -> 1 at z = 0 (outward normal +z), bottom nodes
-  // 2, 3 at z = -0.02e-6; slave nodes 4 and 6 below the sliver, 5 inside it.
-  const std::vector<Vec3> x = {{1e-6, 0, 0},           {0, 0, 0},
-                               {0, -0.02e-6, 0},       {1e-6, -0.02e-6, 0},
-                               {0.5e-6, -0.025e-6, 0}, {0.3e-6, -0.005e-6, 0},
-                               {0.9e-6, -0.025e-6, 0}};
-  ContactSurface master = make_contact_surface(DetectionKind::node_on_segment, {{0, 1, -1, -1}});
-  const ContactSurface slave =
-      make_contact_surface(DetectionKind::node_on_segment, {{4, 6, -1, -1}, {5, 5, -1, -1}});
-  const SearchSettings st;
-  auto paired = [&](int node) {
-    for (const DetectedPair& p : find_pairs_all_pairs(master, slave, x, st)) {
-      if (slave.nodes[static_cast<std::size_t>(p.slave)] == node) return true;
-    }
-    return false;
-  };
-  ASSERT_TRUE(paired(4));  // without element nodes: captured by the face's length
-  master.behind = {{2, 3, -1, -1}};
-  EXPECT_FALSE(paired(4));
-  EXPECT_TRUE(paired(5));
-}
-
 TEST(ContactSearch, slave_areas_add_up_to_the_surface) {
   // Axisymmetric: the ring areas of a half-disc's arc nodes add up to the
   // sphere's area (per radian, 2 R^2) to the chord error of the polygon.
