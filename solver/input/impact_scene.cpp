@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "solver/input/material_io.hpp"
+#include "solver/input/scene_io.hpp"
 #include "solver/input/schema.hpp"
 #include "solver/material/strength_model.hpp"
 
@@ -43,19 +44,6 @@ constexpr double k_sph_max_h_growth = 1.0;           // h / h_0 cap at reference
 
 [[noreturn]] void fail(const std::string& pointer, const std::string& message) {
   throw InputError({{pointer, message}});
-}
-
-Material resolve(const json& m, const std::string& pointer) {
-  try {
-    if (m.is_string()) return load_material(m.get<std::string>());
-    return material_from_json(m);
-  } catch (const InputError& e) {
-    std::vector<SchemaViolation> v = e.violations();
-    for (SchemaViolation& x : v) x.pointer = pointer + x.pointer;
-    throw InputError(std::move(v));
-  } catch (const std::exception& e) {
-    fail(pointer, e.what());
-  }
 }
 
 // Flow stress at eps_p = 1, 1e7 /s and T_ref: the stress a strongly
@@ -95,15 +83,16 @@ json vec(double x, double y, double z) {
 
 }  // namespace
 
-ExpandedImpact expand_particle_impact(const json& doc) {
+ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::path& base_dir) {
   const json& pi = doc.at("particle_impact");
   const std::string base = "/particle_impact";
   const json& particle = pi.at("particle");
   const json substrate = pi.value("substrate", json::object());
 
-  const Material mp = resolve(particle.at("material"), base + "/particle/material");
-  const Material ms =
-      resolve(substrate.value("material", particle.at("material")), base + "/substrate/material");
+  const Material mp =
+      scene_material(particle.at("material"), base_dir, base + "/particle/material");
+  const Material ms = scene_material(substrate.value("material", particle.at("material")), base_dir,
+                                     base + "/substrate/material");
   const double R = particle.at("radius").get<double>();
   const double v = pi.at("velocity").get<double>();
   const double angle = pi.value("angle", 0.0);  // degrees from the normal

@@ -48,6 +48,7 @@
 // is decided.
 #pragma once
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -66,9 +67,12 @@ struct ExpandedImpact {
 };
 
 // `doc` is a scene document with a `particle_impact` block and no bodies,
-// already valid against the scene schema. Throws InputError naming the field
-// when the block cannot be expanded (unknown material, adhesion asked on a
-// rigid substrate, ...).
-ExpandedImpact expand_particle_impact(const nlohmann::json& doc);
+// already valid against the scene schema; its materials take every form a
+// body's do, files relative to `base_dir` (the scene file's folder; empty =
+// the working folder). Throws InputError naming the field when the block
+// cannot be expanded (unknown material, adhesion asked on a rigid
+// substrate, ...).
+ExpandedImpact expand_particle_impact(const nlohmann::json& doc,
+                                      const std::filesystem::path& base_dir = {});
 
 }  // namespace splat

@@ -226,6 +226,18 @@ std::optional<Material> resolve_material(const json& m, const std::filesystem::p
   return material_in_scene(*merged, pointer, problems);
 }
 
+}  // namespace
+
+Material scene_material(const json& m, const std::filesystem::path& base_dir,
+                        const std::string& pointer) {
+  Problems problems;
+  const std::optional<Material> material = resolve_material(m, base_dir, pointer, problems);
+  if (!problems.list.empty()) throw InputError(std::move(problems.list));
+  return *material;
+}
+
+namespace {
+
 // ---------------------------------------------------------------- bodies
 
 Geometry parse_geometry(const json& g) {
@@ -878,7 +890,7 @@ void check_impact_velocity(const Scene& scene, const ImpactSpec& impact) {
 LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
   validate_or_throw("scene", doc);
   if (doc.contains("particle_impact") && !doc.contains("bodies") && !doc.contains("two_mass")) {
-    const ExpandedImpact expanded = expand_particle_impact(doc);
+    const ExpandedImpact expanded = expand_particle_impact(doc, base_dir);
     LoadedScene loaded = read_scene(expanded.scene, base_dir);
     const json& block = expanded.scene.at("particle_impact");
     loaded.scene.impact = impact_spec(block);

@@ -39,6 +39,13 @@ Scene scene_from_json(const nlohmann::json& doc, const std::filesystem::path& ba
 nlohmann::json resolved_scene_json(const nlohmann::json& doc,
                                    const std::filesystem::path& base_dir = {});
 
+// A material as a scene names it: a library name, a file path (relative to
+// `base_dir`, the scene file's folder; empty = the working folder), an
+// inline document, or {"base": NAME, ...fields} merged into NAME's document.
+// Throws InputError with every violation, at `pointer` and below it.
+Material scene_material(const nlohmann::json& m, const std::filesystem::path& base_dir,
+                        const std::string& pointer);
+
 // Applies `/json/pointer=VALUE` overrides in order. VALUE is parsed as JSON;
 // text that is not JSON is taken as a string (`/bodies/0/material=cu-deck`).
 // The pointer may name a missing member of an existing object (it is created)

@@ -3,12 +3,16 @@
 // modelled.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "solver/input/impact_scene.hpp"
+#include "solver/input/material_io.hpp"
 #include "solver/input/scene_io.hpp"
 #include "solver/input/schema.hpp"
+#include "support/temp_dir.hpp"
 
 namespace splat {
 namespace {
@@ -168,6 +172,31 @@ TEST(ImpactScene, expanded_scene_with_disagreeing_velocities_is_refused) {
     if (body["name"] == "particle") body["initial"]["velocity"] = {0.0, 0.0, -5.0};
   }
   EXPECT_EQ(first_error(changed), "");
+}
+
+}  // namespace
+}  // namespace splat
+
+namespace splat {
+namespace {
+
+// Materials of a particle_impact block take every form a body's do: a file
+// relative to the scene's folder (not the working folder), and a library
+// material with fields changed ({"base": NAME, ...}).
+TEST(ImpactScene, materials_resolve_like_a_bodys) {
+  test_support::TempDir t;
+  std::filesystem::create_directories(t.path / "mats");
+  json m = material_document("al-thesis");
+  m["name"] = "al-copy";
+  std::ofstream(t.path / "mats" / "al-copy.json") << m.dump();
+  json block = al_on_al(300.0);
+  block["particle"]["material"] = "mats/al-copy.json";
+  block["substrate"] = {{"material", {{"base", "al-thesis"}, {"density", 2700.0}}}};
+  const LoadedScene s = read_scene(impact(block), t.path);
+  ASSERT_EQ(s.scene.bodies.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.scene.bodies[1].material.density, 2700.0);
+  EXPECT_NE(first_error(impact(block)).find("/particle_impact/particle/material"),
+            std::string::npos);  // from the working folder the file is not found
 }
 
 }  // namespace
