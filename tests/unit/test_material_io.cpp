@@ -87,7 +87,8 @@ TEST(material_library, every_material_loads_under_its_own_name) {
     EXPECT_EQ(m.name, name);
     EXPECT_FALSE(m.source.empty());
     EXPECT_EQ(m.eos.model, EosModel::linear) << name << ": the thesis uses a linear EOS";
-    EXPECT_TRUE(m.eos.mie_gruneisen.has_value()) << name;
+    // ti6al4v-jc: no Hugoniot was read for its alloy (its source says so).
+    EXPECT_EQ(m.eos.mie_gruneisen.has_value(), name != "ti6al4v-jc") << name;
   }
 }
 
@@ -304,8 +305,9 @@ TEST(material_lookup, unknown_name_lists_the_library) {
     EXPECT_EQ(e.violations(),
               (Violations{{"",
                            "unknown material 'unobtainium' (known: al-deck, al-thesis, "
-                           "cu-deck, cu-ofhc-ptw, cu-thesis, steel-hopkinson, "
-                           "ti6al4v-thesis; or give a path to a JSON file)"}}));
+                           "al6061-t6-jc, cu-deck, cu-ofhc-jc, cu-ofhc-ptw, cu-thesis, "
+                           "steel-hopkinson, ti6al4v-jc, ti6al4v-thesis; or give a path "
+                           "to a JSON file)"}}));
   }
 }
 
