@@ -1,0 +1,42 @@
+// The library materials with a published Johnson-Cook set
+// (tests/exact/jc_library_sources.hpp), each as particle and substrate of
+// scenes/impact_al_al.json at 300 and 800 m/s: every run ends with a stick or
+// rebound verdict, not a numerical failure, and keeps its energy balance
+// within 5 % (the six runs take about a second on one thread;
+// docs/validation.md, "Material library", lists what each run gives).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "exact/jc_library_sources.hpp"
+#include "support/scene_runs.hpp"
+
+namespace splat {
+namespace {
+
+nlohmann::json impact_scene(const std::string& material, double velocity) {
+  std::ifstream in(std::string(SPLAT_SOURCE_DIR) + "/scenes/impact_al_al.json");
+  nlohmann::json doc = nlohmann::json::parse(in);
+  doc["particle_impact"]["particle"]["material"] = material;
+  doc["particle_impact"]["substrate"] = {{"material", material}};
+  doc["particle_impact"]["velocity"] = velocity;
+  return doc;
+}
+
+TEST(library_material_impacts, each_published_set_ends_in_a_verdict_at_300_and_800_m_s) {
+  for (const exact::JcSourceSet& s : exact::jc_library_sources) {
+    for (double v : {300.0, 800.0}) {
+      const RunSummary r = test_support::run_scene(impact_scene(s.material, v));
+      EXPECT_TRUE(r.outcome == RunOutcome::stick || r.outcome == RunOutcome::rebound)
+          << s.material << " at " << v << " m/s: " << to_string(r.outcome) << " (" << r.reason
+          << ")";
+      EXPECT_LT(std::abs(r.energy.balance_error), 0.05) << s.material << " at " << v << " m/s";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace splat
