@@ -765,6 +765,16 @@ struct Server::Impl {
     return f;
   }
 
+  // Why a job whose result names a file inside the jobs folder has none to
+  // read: the file is gone (a store copied without its jobs folder).
+  std::optional<std::string> missing_result_file(const std::optional<campaign::ResultRecord>& r) {
+    if (!r || r->hdf5_path.empty() || !inside(r->hdf5_path, jobs_dir)) return std::nullopt;
+    std::error_code ec;
+    if (fs::is_regular_file(r->hdf5_path, ec)) return std::nullopt;
+    return "result file '" + r->hdf5_path +
+           "' is missing (was the store copied without its jobs folder " + jobs_dir.string() + "?)";
+  }
+
   json job_doc(const std::string& hash) {
     const auto j = store.job(hash);
     if (!j) fail(404, "not-found", "Not Found", "no job " + hash);
@@ -801,6 +811,8 @@ struct Server::Impl {
     if (const auto f = result_file(r)) {
       doc["links"]["result_h5"] = std::string(k_prefix) + "/jobs/" + hash + "/result.h5";
       doc["histories"] = histories(*f);
+    } else if (const auto why = missing_result_file(r)) {
+      doc["histories"] = {{"error", *why}};
     }
     return doc;
   }
@@ -840,7 +852,9 @@ struct Server::Impl {
   void send_result_file(const httplib::Request& req, httplib::Response& res) {
     const std::string hash = req.matches[1];
     if (!store.job(hash)) fail(404, "not-found", "Not Found", "no job " + hash);
-    const auto f = result_file(store.result(hash));
+    const auto r = store.result(hash);
+    if (const auto why = missing_result_file(r)) fail(404, "not-found", "Not Found", *why);
+    const auto f = result_file(r);
     if (!f) fail(404, "not-found", "Not Found", "job " + hash + " has no result file");
     const std::uintmax_t size = fs::file_size(*f);
     auto in = std::make_shared<std::ifstream>(*f, std::ios::binary);

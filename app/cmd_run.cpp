@@ -82,8 +82,11 @@ void print_human(const RunSummary& s) {
     std::printf("    flattening %.3f, penetration %.4e m, max eps_p %.3f, max T %.1f K\n",
                 r.flattening_ratio, r.penetration_depth, r.max_plastic_strain, r.max_temperature);
   }
-  if (!s.hdf5_path.empty())
+  if (!s.hdf5_path.empty() && !s.xdmf_path.empty()) {
     std::printf("  result %s (ParaView: %s)\n", s.hdf5_path.c_str(), s.xdmf_path.c_str());
+  } else if (!s.hdf5_path.empty()) {
+    std::printf("  result %s (histories; no field snapshots)\n", s.hdf5_path.c_str());
+  }
 }
 
 int run_scene(const RunOptions& o) {

@@ -236,6 +236,13 @@ std::vector<json> parameter_sets(const CampaignSpec& spec) {
 ExpandedJob make_job(const CampaignSpec& spec, const json& params, double velocity,
                      const SceneResolver& resolve, const std::string& solver_version) {
   json scene = spec.base_scene;
+  // A job writes histories but no field snapshots (an impact scene's default
+  // ones) unless the base scene asks for them.
+  const json* output = scene.contains("output") ? &scene["output"] : nullptr;
+  if (output == nullptr || !output->is_object() ||
+      (!output->contains("snapshot_times") && !output->contains("snapshot_count"))) {
+    scene["output"]["snapshot_count"] = 0;
+  }
   scene[json::json_pointer(spec.velocity_pointer)] = spec.velocity_scale * velocity;
   for (const ParameterAxis& a : spec.axes) {
     scene[json::json_pointer(a.pointer)] = params.at(a.name);

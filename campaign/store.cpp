@@ -202,7 +202,21 @@ std::string host_name() {
   return buf;
 }
 
-Store::Store(const std::filesystem::path& file, int busy_timeout_ms) : path_(file) {
+std::string stored_result_path(const std::filesystem::path& folder, const std::string& path) {
+  if (path.empty()) return path;
+  const std::filesystem::path absolute = std::filesystem::absolute(path).lexically_normal();
+  const std::filesystem::path relative = absolute.lexically_relative(folder);
+  if (relative.empty() || *relative.begin() == "..") return absolute.string();
+  return relative.string();
+}
+
+std::string result_path_from_store(const std::filesystem::path& folder, const std::string& stored) {
+  if (stored.empty() || std::filesystem::path(stored).is_absolute()) return stored;
+  return (folder / stored).lexically_normal().string();
+}
+
+Store::Store(const std::filesystem::path& file, int busy_timeout_ms)
+    : path_(file), folder_(std::filesystem::absolute(file).lexically_normal().parent_path()) {
   writer_db_ = std::make_unique<Database>(file, busy_timeout_ms);
   configure(*writer_db_);
   migrate(*writer_db_);
@@ -519,7 +533,7 @@ void Store::finish_job(const std::string& hash, JobState state, const std::strin
           .bind(2, result->outcome)
           .bind(3, result->reason)
           .bind(4, result->summary)
-          .bind(5, result->hdf5_path)
+          .bind(5, stored_result_path(folder_, result->hdf5_path))
           .bind(6, unix_now())
           .run();
     }
@@ -643,7 +657,9 @@ std::optional<ResultRecord> Store::result(const std::string& job_hash) {
       "WHERE job_hash = ?");
   s.bind(1, job_hash);
   if (!s.step()) return std::nullopt;
-  return ResultRecord{s.text(0), s.text(1), s.text(2), s.text(3), s.text(4), s.real(5)};
+  return ResultRecord{
+      s.text(0), s.text(1), s.text(2), s.text(3), result_path_from_store(folder_, s.text(4)),
+      s.real(5)};
 }
 
 std::optional<Submission> Store::submission(const std::string& key) {

@@ -79,8 +79,11 @@ struct ResultRecord {
   std::string job_hash;
   std::string outcome;  // the summary's outcome
   std::string reason;
-  std::string summary;    // the summary document, JSON text
-  std::string hdf5_path;  // empty when none
+  std::string summary;  // the summary document, JSON text
+  // The run's HDF5 file, empty when none. Stored relative to the store's
+  // folder when it lies inside it (a copied folder keeps its results);
+  // Store::result gives it back absolute. Older stores hold absolute paths.
+  std::string hdf5_path;
   double created_at = 0.0;
 };
 
@@ -159,6 +162,12 @@ struct OpenedCampaign {
   bool replayed = false;  // the key was known: nothing was written
 };
 
+// A result path as the store keeps it: relative to `folder` (the store's
+// absolute folder) when the file lies inside it, else absolute; "" stays "".
+std::string stored_result_path(const std::filesystem::path& folder, const std::string& path);
+// The inverse: an absolute path (old stores' absolute paths pass unchanged).
+std::string result_path_from_store(const std::filesystem::path& folder, const std::string& stored);
+
 class Store {
  public:
   // Opens or creates the file, applies pending migrations, starts the writer.
@@ -170,6 +179,8 @@ class Store {
   Store& operator=(const Store&) = delete;
 
   const std::filesystem::path& path() const { return path_; }
+  // The absolute folder of the store file: stored result paths are relative to it.
+  const std::filesystem::path& folder() const { return folder_; }
   int schema_version();
 
   // --- writes (each one transaction on the writer thread) -------------------
@@ -239,6 +250,7 @@ class Store {
   void migrate(Database& db);
 
   std::filesystem::path path_;
+  std::filesystem::path folder_;
   std::unique_ptr<Database> writer_db_;
   std::mutex queue_mutex_;
   std::condition_variable queue_cv_;

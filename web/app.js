@@ -445,7 +445,8 @@ async function showJob(id) {
     `Job ${id.slice(0, 12)} at ${fmt(use.velocity)} m/s ${JSON.stringify(use.params || {})}`;
   document.getElementById('job-summary').textContent =
     `${job.state}; ${job.result ? `${job.result.outcome}: ${job.result.reason}` : job.exit_reason}; ` +
-    `wall time ${seconds(job.wall_seconds)}`;
+    `wall time ${seconds(job.wall_seconds)}` +
+    (job.histories && job.histories.error ? `; no histories: ${job.histories.error}` : '');
   const link = document.getElementById('h5-link');
   link.hidden = !job.links.result_h5;
   if (job.links.result_h5) link.href = job.links.result_h5;

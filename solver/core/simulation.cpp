@@ -600,8 +600,9 @@ void Simulation::Impl::fill_summary(RunSummary& s) const {
     s.interfaces.push_back(is);
   }
   s.hdf5_path = h5_path.empty() ? std::string() : h5_path.string();
-  s.xdmf_path = h5_path.empty() ? std::string()
-                                : std::filesystem::path(h5_path).replace_extension(".xmf").string();
+  // The .xmf describes the field snapshots; without any it is not written.
+  s.xdmf_path =
+      h5_path.empty() || snapshots_written == 0 ? std::string() : xmf_path_for(h5_path).string();
 }
 
 }  // namespace splat

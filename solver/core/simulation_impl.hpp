@@ -46,6 +46,7 @@ struct Simulation::Impl {
   EnergyBudget energy;
   int max_return_iterations = 0;
   std::size_t next_snapshot = 0;
+  std::size_t snapshots_written = 0;  // field snapshots in the result file
   double next_history_time = 0.0;
   std::unique_ptr<ResultFile> file;
   std::filesystem::path h5_path;

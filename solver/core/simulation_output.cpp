@@ -138,10 +138,45 @@ void Simulation::Impl::write_snapshot(bool final_state) {
   // Storage for every body's arrays must outlive the views.
   struct Arrays {
     std::vector<double> coords, velocity, eps_p, temperature, damage, yield, mises, pressure;
+    std::vector<double> stress;      // Cauchy stress s - p I, Tensor6 order
+    std::vector<double> link_state;  // per node; empty when no interface has this slave body
     std::vector<int> active;
   };
-  std::vector<Arrays> arrays(model.bodies.size() + model.sph_bodies.size());
+  const std::size_t num_bodies = model.bodies.size() + model.sph_bodies.size();
+  std::vector<Arrays> arrays(num_bodies);
   std::vector<BodySnapshot> snaps;
+  // The link state (cohesive_law.hpp LinkState: 0 none, 1 contact, 2 active,
+  // 3 exhausted, 4 eroded) of each slave node, on the slave body's nodes;
+  // nodes off the interface read 0. With several interfaces on one slave
+  // body the later one's states win where they are not none.
+  const auto body_range = [&](const std::string& name) -> std::pair<std::size_t, std::size_t> {
+    for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+      if (model.bodies[b].name == name) return {b, model.bodies[b].node_begin};
+    }
+    for (std::size_t k = 0; k < model.sph_bodies.size(); ++k) {
+      if (model.sph_bodies[k].name == name) {
+        return {model.bodies.size() + k, model.sph_bodies[k].node_begin};
+      }
+    }
+    return {num_bodies, 0};
+  };
+  for (const ContactInterface& c : model.contacts) {
+    const auto [b, node_begin] = body_range(c.slave_body());
+    if (b >= num_bodies) continue;
+    const std::size_t nodes = b < model.bodies.size()
+                                  ? model.bodies[b].node_end - model.bodies[b].node_begin
+                                  : model.sph_bodies[b - model.bodies.size()].size();
+    std::vector<double>& states = arrays[b].link_state;
+    states.resize(nodes, 0.0);
+    const std::vector<int>& slave_nodes = c.slave_surface().nodes;
+    const std::vector<LinkState>& links = c.link_states();
+    for (std::size_t k = 0; k < slave_nodes.size() && k < links.size(); ++k) {
+      const std::size_t local = static_cast<std::size_t>(slave_nodes[k]) - node_begin;
+      if (links[k] != LinkState::none && local < nodes) {
+        states[local] = static_cast<double>(links[k]);
+      }
+    }
+  }
   // Node coordinates and velocity; one cell's fields (element centre or
   // particle); the snapshot of a body from its arrays.
   const auto add_node = [&](Arrays& a, std::size_t i) {
@@ -157,17 +192,25 @@ void Simulation::Impl::write_snapshot(bool final_state) {
     a.yield.push_back(st.sigma_y);
     a.mises.push_back(von_mises(st.s));
     a.pressure.push_back(st.p);
+    const Mat3& s = st.s;
+    a.stress.insert(a.stress.end(),
+                    {s(0, 0) - st.p, s(0, 1), s(0, 2), s(1, 1) - st.p, s(1, 2), s(2, 2) - st.p});
     a.active.push_back(active);
   };
-  const auto add_snapshot = [&](const std::string& name, const Arrays& a) {
+  // SPH bodies: one point per particle, every field on the points.
+  const auto add_snapshot = [&](const std::string& name, const Arrays& a, bool on_cells) {
     BodySnapshot s;
     s.body = name;
     s.coordinates = a.coords;
-    s.fields = {
-        {"velocity", "m/s", false, dim, a.velocity},  {"plastic_strain", "-", true, 1, a.eps_p},
-        {"temperature", "K", true, 1, a.temperature}, {"damage", "-", true, 1, a.damage},
-        {"yield_stress", "Pa", true, 1, a.yield},     {"von_mises", "Pa", true, 1, a.mises},
-        {"pressure", "Pa", true, 1, a.pressure}};
+    s.fields = {{"velocity", "m/s", false, dim, a.velocity},
+                {"plastic_strain", "-", on_cells, 1, a.eps_p},
+                {"temperature", "K", on_cells, 1, a.temperature},
+                {"damage", "-", on_cells, 1, a.damage},
+                {"yield_stress", "Pa", on_cells, 1, a.yield},
+                {"von_mises", "Pa", on_cells, 1, a.mises},
+                {"pressure", "Pa", on_cells, 1, a.pressure},
+                {"stress", "Pa", on_cells, 6, a.stress}};
+    if (!a.link_state.empty()) s.fields.push_back({"link_state", "-", false, 1, a.link_state});
     s.active_cells = a.active;
     snaps.push_back(std::move(s));
   };
@@ -178,9 +221,8 @@ void Simulation::Impl::write_snapshot(bool final_state) {
     for (std::size_t e = 0; e < body.num_elements(); ++e) {
       add_cell(a, body.state[e], body.active[e]);
     }
-    add_snapshot(body.name, a);
+    add_snapshot(body.name, a, true);
   }
-  // SPH bodies: one point cell per particle, fields on the cells.
   for (std::size_t k = 0; k < model.sph_bodies.size(); ++k) {
     const SphBody& body = model.sph_bodies[k];
     Arrays& a = arrays[model.bodies.size() + k];
@@ -188,9 +230,10 @@ void Simulation::Impl::write_snapshot(bool final_state) {
       add_node(a, body.node_begin + p);
       add_cell(a, body.state[p], body.active[p]);
     }
-    add_snapshot(body.name, a);
+    add_snapshot(body.name, a, false);
   }
   file->write_snapshot(time, snaps);
+  ++snapshots_written;
 }
 
 }  // namespace splat

@@ -46,6 +46,9 @@
 // Hertz contact time of the two elastic bodies at v (Johnson 1985, eq. 11.24);
 // the adaptive end-time rule of the impact run stops earlier once the outcome
 // is decided.
+// Output: unless `output` gives snapshot_times or snapshot_count (0 for none),
+// 17 field snapshots at max_time i / 16, i = 0..16; a run that stops earlier
+// writes its final state as its last snapshot.
 #pragma once
 
 #include <filesystem>

@@ -520,9 +520,17 @@ std::string exact_text(double v) {
   return std::string(buffer, result.ptr);
 }
 
+// The name ParaView and meshio show: the dataset's name with its unit in
+// brackets ("temperature [K]"); dimensionless fields keep the bare name.
+std::string display_name(const std::string& name, const std::string& unit) {
+  if (unit.empty() || unit == "-" || unit == "1") return name;
+  return name + " [" + unit + "]";
+}
+
 struct XdmfField {
-  std::string name;
-  bool on_cells = false;
+  std::string name;          // dataset name under the snapshot's body group
+  std::string display_name;  // XDMF Attribute Name
+  bool on_cells = false;     // Center="Cell" (point bodies: always node-centred)
   int components = 1;
   bool is_integer = false;
 };
@@ -580,7 +588,10 @@ struct ResultFile::Impl {
     pending_history.clear();
   }
 
+  // Writes the .xmf once there is a snapshot to show (an .xmf without one
+  // opens as an empty data set).
   void write_xmf() const {
+    if (snapshots.empty()) return;
     const std::string h5_name = xml_escape(h5_path.filename().string());
     std::ostringstream out;
     out << "<?xml version=\"1.0\" ?>\n"
@@ -619,8 +630,8 @@ struct ResultFile::Impl {
         out << "          </Geometry>\n";
         for (const XdmfField& field : snapshot.body_fields[b]) {
           const std::string& items = field.on_cells ? cells : nodes;
-          out << "          <Attribute Name=\"" << xml_escape(field.name) << "\" AttributeType=\""
-              << xdmf_attribute_type(field.components) << "\" Center=\""
+          out << "          <Attribute Name=\"" << xml_escape(field.display_name)
+              << "\" AttributeType=\"" << xdmf_attribute_type(field.components) << "\" Center=\""
               << (field.on_cells ? "Cell" : "Node") << "\">\n";
           data_item("            ",
                     field.components == 1 ? items : items + " " + std::to_string(field.components),
@@ -630,12 +641,6 @@ struct ResultFile::Impl {
         out << "        </Grid>\n";
       }
       out << "      </Grid>\n";
-    }
-    if (snapshots.empty()) {
-      // ParaView's XDMF2 reader crashes on a collection without children; an
-      // empty spatial collection reads as an empty data set in every reader.
-      out << "      <Grid Name=\"no_snapshots\" GridType=\"Collection\" "
-             "CollectionType=\"Spatial\">\n      </Grid>\n";
     }
     out << "    </Grid>\n  </Domain>\n</Xdmf>\n";
 
@@ -750,7 +755,9 @@ ResultFile::ResultFile(const std::filesystem::path& h5_path, std::vector<BodyTop
 
   m.snapshots_group = create_group(root, "snapshots", file, "/snapshots");
   m.flush_file();
-  m.write_xmf();
+  // An .xmf of an earlier run here would describe datasets this file no longer has.
+  std::error_code ignored;
+  std::filesystem::remove(m.xmf_path, ignored);
   impl_ = std::move(building);
 }
 
@@ -884,7 +891,7 @@ void ResultFile::write_snapshot(double time, std::span<const BodySnapshot> bodie
     std::set<std::string> names;
     for (const FieldView& field : snapshot->fields) {
       require_plain_name(field.name, "field");
-      if (field.name == "coordinates" || field.name == "active") {
+      if (field.name == "coordinates" || field.name == "active" || field.name == "eroded") {
         throw std::invalid_argument(at + "field name " + in_quotes(field.name) + " is reserved");
       }
       if (!names.insert(field.name).second) {
@@ -935,25 +942,38 @@ void ResultFile::write_snapshot(double time, std::span<const BodySnapshot> bodie
           H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, snapshot.coordinates.data(), file, path);
       write_text_attribute(dataset.get(), "unit", "m", file, path);
     }
+    // A point body's cells are its nodes: its fields are point data.
+    const bool points = body.kind == CellKind::point;
     std::vector<XdmfField> fields;
     for (const FieldView& field : snapshot.fields) {
       const std::string path = body_path + "/" + field.name;
       const hsize_t items = field.on_cells ? m.num_cells[b] : body.num_nodes;
+      const bool on_cells = field.on_cells && !points;
       std::vector<hsize_t> dims{items};
       if (field.components > 1) dims.push_back(static_cast<hsize_t>(field.components));
       Handle dataset = write_dataset(body_group.get(), field.name, dims, H5T_IEEE_F64LE,
                                      H5T_NATIVE_DOUBLE, field.values.data(), file, path);
       write_text_attribute(dataset.get(), "unit", field.unit, file, path);
-      write_text_attribute(dataset.get(), "center", field.on_cells ? "cell" : "node", file, path);
-      fields.push_back({field.name, field.on_cells, field.components, false});
+      write_text_attribute(dataset.get(), "center", on_cells ? "cell" : "node", file, path);
+      fields.push_back(
+          {field.name, display_name(field.name, field.unit), on_cells, field.components, false});
     }
     if (!snapshot.active_cells.empty()) {
-      const std::string path = body_path + "/active";
-      Handle dataset = write_dataset(body_group.get(), "active", {m.num_cells[b]}, H5T_STD_I32LE,
-                                     H5T_NATIVE_INT, snapshot.active_cells.data(), file, path);
-      write_text_attribute(dataset.get(), "unit", "1", file, path);
-      write_text_attribute(dataset.get(), "center", "cell", file, path);
-      fields.push_back({"active", true, 1, true});
+      // "active" for readers of the HDF5 file; its complement "eroded" for a
+      // threshold in ParaView (keep eroded < 0.5), which the .xmf names.
+      std::vector<int> eroded(snapshot.active_cells.size());
+      for (std::size_t c = 0; c < eroded.size(); ++c) eroded[c] = 1 - snapshot.active_cells[c];
+      const char* center = points ? "node" : "cell";
+      for (const auto& [name, values] :
+           {std::pair<const char*, const int*>{"active", snapshot.active_cells.data()},
+            std::pair<const char*, const int*>{"eroded", eroded.data()}}) {
+        const std::string path = body_path + "/" + name;
+        Handle dataset = write_dataset(body_group.get(), name, {m.num_cells[b]}, H5T_STD_I32LE,
+                                       H5T_NATIVE_INT, values, file, path);
+        write_text_attribute(dataset.get(), "unit", "1", file, path);
+        write_text_attribute(dataset.get(), "center", center, file, path);
+      }
+      fields.push_back({"eroded", "eroded", !points, 1, true});
     }
     record.body_fields.push_back(std::move(fields));
   }

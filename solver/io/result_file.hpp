@@ -14,15 +14,23 @@
 //   /snapshots/<k>                    k = 0, 1, ...; attributes time and time_unit = "s"
 //   /snapshots/<k>/<body>/coordinates float64, num_nodes x dimension, unit "m"
 //   /snapshots/<k>/<body>/<field>     float64, num_items (x components); attribute
-//                                     center = "node" | "cell"
+//                                     center = "node" | "cell" ("node" for every field
+//                                     of a point body: its cells are its nodes)
 //   /snapshots/<k>/<body>/active      int32, one per cell, 1 = live, 0 = eroded
+//   /snapshots/<k>/<body>/eroded      int32, 1 - active (what the .xmf shows)
+//
+// The .xmf: one temporal collection; each time step a spatial collection of
+// one uniform grid per body (Quadrilateral, Hexahedron, or Polyvertex with
+// point data). Attribute names carry the unit, "temperature [K]" (bare name
+// when dimensionless); each refers to its dataset above.
 // Groups track link creation order, so bodies, columns and fields list in the
 // order they were written.
 //
 // Crash safety: the file is flushed after construction, after each snapshot and
 // every k_history_flush_rows history rows, and the .xmf is replaced atomically
 // (temp file + rename) after each snapshot, so a process cut after a completed
-// snapshot leaves a readable pair.
+// snapshot leaves a readable pair. A file without snapshots has no .xmf (the
+// constructor removes one left by an earlier run).
 //
 // HDF5 failures throw std::runtime_error naming the file and the object path;
 // bad arguments throw std::invalid_argument; use after close() throws
@@ -54,7 +62,7 @@ struct BodyTopology {
 };
 
 struct FieldView {
-  std::string name;  // [A-Za-z0-9_.+-]+, not "coordinates" or "active"
+  std::string name;  // [A-Za-z0-9_.+-]+, not "coordinates", "active" or "eroded"
   std::string unit;
   bool on_cells = false;  // cell field (else node field)
   // 1 scalar, 2 or 3 vector, 6 symmetric tensor in XDMF Tensor6 order
@@ -77,8 +85,8 @@ inline constexpr std::size_t k_history_flush_rows = 1024;
 // may be used from separate threads.
 class ResultFile {
  public:
-  // Creates (truncates) h5_path and writes the bodies' topology, the empty
-  // history columns and an .xmf with no time steps.
+  // Creates (truncates) h5_path and writes the bodies' topology and the empty
+  // history columns; removes a stale .xmf (the first snapshot writes it).
   ResultFile(const std::filesystem::path& h5_path, std::vector<BodyTopology> bodies,
              std::vector<std::pair<std::string, std::string>> history_columns /* name, unit */);
   ResultFile(ResultFile&&) noexcept;
@@ -101,7 +109,8 @@ class ResultFile {
   // time (s) is finite and not below the previous snapshot's.
   void write_snapshot(double time, std::span<const BodySnapshot> bodies);
 
-  // Flushes the history, writes the .xmf and closes the file. Idempotent.
+  // Flushes the history, writes the .xmf (if there are snapshots) and closes
+  // the file. Idempotent.
   void close();
 
   const std::filesystem::path& h5_path() const;

@@ -72,6 +72,43 @@ TEST(api_jobs, job_document_histories_and_download) {
   }
 }
 
+TEST(api_jobs, a_missing_result_file_is_an_error_not_silence) {
+  TempDir dir;
+  api::ServerOptions o = options_for(dir);
+  o.run_campaigns = false;
+  // A store copied without its jobs folder: the job's result names a file
+  // inside the jobs folder that is not there.
+  const std::string hash(64, 'd');
+  fs::create_directories(dir.path / "store.db.jobs");
+  {
+    campaign::Store store(o.db);
+    campaign::CampaignRecord rec;
+    rec.name = "copied";
+    rec.spec_hash = std::string(64, 'e');
+    rec.spec = "{}";
+    const auto cid = store.open_campaign(rec);
+    store.add_points(cid, {{{"{}", "{}", 1.0, hash, "grid"}, "{}", "v"}}, false);
+    store.claim_next_job(cid, "test:1:1", "test");
+    campaign::ResultRecord res;
+    res.job_hash = hash;
+    res.outcome = "stick";
+    res.summary = "{}";
+    res.hdf5_path = (dir.path / "store.db.jobs" / hash / "out" / "run.h5").string();
+    store.finish_job(hash, campaign::JobState::succeeded, "stick", 0.1, 1, res);
+  }
+  ServerHandle server(o);
+  httplib::Client c = server.client();
+  auto job = c.Get(("/api/v1/jobs/" + hash).c_str());
+  ASSERT_EQ(job->status, 200) << job->body;
+  const json doc = body_json(job);
+  EXPECT_EQ(schema_errors("api_job", doc), "") << job->body;
+  ASSERT_TRUE(doc["histories"].is_object()) << job->body;
+  EXPECT_NE(doc["histories"].value("error", "").find("is missing"), std::string::npos) << job->body;
+  auto h5 = c.Get(("/api/v1/jobs/" + hash + "/result.h5").c_str());
+  expect_problem(h5, 404);
+  EXPECT_NE(h5->body.find("is missing"), std::string::npos) << h5->body;
+}
+
 TEST(api_jobs, a_result_path_outside_the_jobs_folder_is_never_served) {
   TempDir dir;
   api::ServerOptions o = options_for(dir);

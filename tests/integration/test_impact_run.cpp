@@ -181,6 +181,46 @@ TEST(impact_run, schema_requires_the_impact_keys_once_a_verdict_is_reported) {
   EXPECT_FALSE(validate("result", broken).empty());
 }
 
+TEST(impact_run, field_snapshots_by_default_spread_over_the_impact) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("splat_impact_snapshots_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  const Output o = run("run " + scene + " --threads 1 --out " + dir.string());
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const std::filesystem::path h5 = dir / "impact_al_al.h5";
+  const std::filesystem::path xmf = dir / "impact_al_al.xmf";
+  EXPECT_NE(o.stdout_text.find("(ParaView: " + xmf.string() + ")"), std::string::npos)
+      << o.stdout_text;
+  const ResultSummary rs = read_result_summary(h5);
+  // The initial state, the ones before the verdict settled, the final state.
+  EXPECT_GE(rs.snapshots, 10u);
+  EXPECT_LE(rs.snapshots, 17u);
+  EXPECT_EQ(read_snapshot_time(h5, 0), 0.0);
+  const std::vector<double> time = read_history(h5, "time");
+  EXPECT_NEAR(read_snapshot_time(h5, rs.snapshots - 1), time.back(), 1e-15);
+  for (const char* body : {"particle", "substrate"}) {
+    const auto shape = read_dataset_shape(
+        h5, "/snapshots/" + std::to_string(rs.snapshots - 1) + "/" + body + "/stress");
+    ASSERT_TRUE(shape.has_value()) << body;
+    EXPECT_EQ(shape->at(1), 6u) << body;
+  }
+  // The interface's link states sit on the slave body's nodes: some are active.
+  const std::vector<double> links =
+      read_snapshot_field(h5, rs.snapshots - 1, "particle", "link_state");
+  EXPECT_GT(std::count(links.begin(), links.end(), 2.0), 0) << "no active link in the snapshot";
+  EXPECT_TRUE(std::filesystem::exists(xmf));
+
+  // Switched off: histories only, and no ParaView path to an empty file.
+  const Output off = run("run " + scene + " --threads 1 --out " + dir.string() +
+                         " --set '/output={\"snapshot_count\":0}'");
+  ASSERT_EQ(off.code, 0) << off.stdout_text;
+  EXPECT_EQ(off.stdout_text.find("ParaView"), std::string::npos) << off.stdout_text;
+  EXPECT_NE(off.stdout_text.find("no field snapshots"), std::string::npos) << off.stdout_text;
+  EXPECT_EQ(read_result_summary(h5).snapshots, 0u);
+  EXPECT_FALSE(std::filesystem::exists(xmf));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(impact_run, converge_prints_one_row_per_level_and_errors_against_the_finest) {
   const Output o = run("converge " + scene +
                        " --json --set-levels /particle_impact/particle/elements_across=2,4,8");

@@ -96,6 +96,24 @@ TEST(campaign_spec, particle_impact_defaults_the_pointers) {
   EXPECT_EQ(jobs[1].scene.at("/particle_impact/velocity"_json_pointer), 600.0);
 }
 
+TEST(campaign_spec, jobs_write_no_field_snapshots_unless_the_base_scene_asks) {
+  // An impact run takes field snapshots by default; a campaign job keeps
+  // only its histories (no time or disk spent on fields nobody looks at).
+  json doc = json::parse(R"({
+    "name": "impact",
+    "base_scene": {"name": "impact", "particle_impact": {
+      "particle": {"material": "al-thesis", "radius": 12.5e-6, "elements_across": 4},
+      "velocity": 400, "adhesion": {"G_c": 30}}},
+    "velocity": {"values": [300]}
+  })");
+  const SceneResolver resolve = splat_scene_resolver();
+  const ExpandedJob plain = expand(read_campaign(doc), resolve, "v1").at(0);
+  EXPECT_EQ(plain.scene.at("/output/snapshot_times"_json_pointer), json::array());
+  doc["base_scene"]["output"] = {{"snapshot_count", 2}};
+  const ExpandedJob asked = expand(read_campaign(doc), resolve, "v1").at(0);
+  EXPECT_EQ(asked.scene.at("/output/snapshot_times"_json_pointer).size(), 2u);
+}
+
 TEST(campaign_spec, expansion_is_the_cartesian_product) {
   const CampaignSpec s = read_campaign(two_mass_campaign());
   const std::vector<ExpandedJob> jobs = expand(s, identity, "v1");

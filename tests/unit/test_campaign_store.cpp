@@ -9,11 +9,14 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <span>
 #include <thread>
+#include <vector>
 
 #include "campaign/process.hpp"
 #include "campaign/sqlite.hpp"
 #include "campaign/store.hpp"
+#include "solver/io/result_file.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -50,6 +53,50 @@ TEST(campaign_store, creates_schema_in_wal_mode_and_reopens) {
   EXPECT_EQ(again.schema_version(), k_store_schema_version);
   ASSERT_EQ(again.campaigns().size(), 1u);
   EXPECT_EQ(again.campaigns()[0].name, "a");
+}
+
+TEST(campaign_store, a_copied_store_folder_keeps_every_jobs_histories) {
+  TempDir t;
+  const fs::path first = t.path / "first";
+  const fs::path h5 = first / "c.db.jobs" / "h1" / "out" / "run.h5";
+  fs::create_directories(h5.parent_path());
+  {
+    splat::ResultFile out(h5, {}, {{"time", "s"}});
+    for (double time : {0.0, 1e-9, 2e-9}) out.append_history(std::span<const double>(&time, 1));
+  }
+  {
+    Store s(first / "c.db");
+    const auto c = s.open_campaign(campaign_named("one"));
+    s.add_points(c, {point("{}", 1.0, "h1")}, false);
+    ASSERT_TRUE(s.claim_next_job(c, this_process_owner(), "hostA"));
+    // As the runner records it: the path the job printed.
+    s.finish_job("h1", JobState::succeeded, "stick", 0.1, 1,
+                 ResultRecord{"h1", "stick", "", "{}", h5.string(), 0.0});
+    EXPECT_EQ(s.result("h1")->hdf5_path, h5.string());
+    Statement raw = s.reader().prepare("SELECT hdf5_path FROM results");
+    ASSERT_TRUE(raw.step());
+    EXPECT_EQ(raw.text(0), "c.db.jobs/h1/out/run.h5");  // relative to the store's folder
+  }
+  const fs::path second = t.path / "second";
+  fs::copy(first, second, fs::copy_options::recursive);
+  fs::remove_all(first);
+  Store copy(second / "c.db");
+  const std::string moved = copy.result("h1")->hdf5_path;
+  EXPECT_EQ(moved, (second / "c.db.jobs" / "h1" / "out" / "run.h5").string());
+  EXPECT_EQ(splat::read_history(moved, "time"), (std::vector<double>{0.0, 1e-9, 2e-9}));
+}
+
+TEST(campaign_store, result_paths_outside_the_folder_and_old_absolute_ones_stay_absolute) {
+  const fs::path folder = "/data/stores";
+  EXPECT_EQ(stored_result_path(folder, "/data/stores/c.db.jobs/h/out/r.h5"),
+            "c.db.jobs/h/out/r.h5");
+  EXPECT_EQ(stored_result_path(folder, "/data/other/r.h5"), "/data/other/r.h5");
+  EXPECT_EQ(stored_result_path(folder, "/data/stores/../x.h5"), "/data/x.h5");
+  EXPECT_EQ(stored_result_path(folder, ""), "");
+  EXPECT_EQ(result_path_from_store(folder, "c.db.jobs/h/out/r.h5"),
+            "/data/stores/c.db.jobs/h/out/r.h5");
+  EXPECT_EQ(result_path_from_store(folder, "/old/absolute/r.h5"), "/old/absolute/r.h5");
+  EXPECT_EQ(result_path_from_store(folder, ""), "");
 }
 
 TEST(campaign_store, refuses_a_newer_schema) {

@@ -61,6 +61,24 @@ TEST(ImpactScene, normal_impact_is_axisymmetric_with_plain_contact_and_no_damage
   for (const SchemaViolation& v : validate("scene", s)) ADD_FAILURE() << to_string(v);
 }
 
+TEST(ImpactScene, field_snapshots_spread_over_the_impact_unless_switched_off) {
+  const LoadedScene plain = read_scene(impact(al_on_al(500.0)));
+  const std::vector<double>& times = plain.scene.output.snapshot_times;
+  ASSERT_EQ(times.size(), 17u);
+  EXPECT_EQ(times.front(), 0.0);  // the undeformed state
+  EXPECT_EQ(times.back(), plain.scene.time.end_time);
+  EXPECT_NEAR(times[8], 0.5 * plain.scene.time.end_time, 1e-20);
+
+  json off = impact(al_on_al(500.0));
+  off["output"] = {{"snapshot_count", 0}};
+  EXPECT_TRUE(read_scene(off).scene.output.snapshot_times.empty());
+  json asked = impact(al_on_al(500.0));
+  asked["output"] = {{"snapshot_times", {1e-9, 2e-9}}};
+  EXPECT_EQ(read_scene(asked).scene.output.snapshot_times, (std::vector<double>{1e-9, 2e-9}));
+  // The resolved scene keeps the times: running it again takes the same ones.
+  EXPECT_EQ(read_scene(plain.resolved).scene.output.snapshot_times, times);
+}
+
 TEST(ImpactScene, oblique_impact_needs_full_3d) {
   json b = al_on_al(600.0);
   b["angle"] = 30.0;

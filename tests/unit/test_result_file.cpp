@@ -281,6 +281,9 @@ TEST(ResultFile, snapshot_fields_round_trip_exactly) {
       EXPECT_EQ(read_snapshot_field(run.h5, k, name, "temperature"), d.temperature);
       const std::vector<double> active(d.active.begin(), d.active.end());
       EXPECT_EQ(read_snapshot_field(run.h5, k, name, "active"), active);
+      std::vector<double> eroded;
+      for (int a : d.active) eroded.push_back(1.0 - a);
+      EXPECT_EQ(read_snapshot_field(run.h5, k, name, "eroded"), eroded);
       const std::string base = "/snapshots/" + std::to_string(k) + "/" + name;
       EXPECT_EQ(read_unit(run.h5, base + "/coordinates"), "m");
       EXPECT_EQ(read_unit(run.h5, base + "/velocity"), "m/s");
@@ -319,11 +322,15 @@ TEST(ResultFile, xdmf_names_every_snapshot_and_existing_datasets) {
   EXPECT_EQ(count(xml, "TopologyType=\"Hexahedron\""), 3u);
   EXPECT_EQ(count(xml, "GeometryType=\"XY\""), 3u);
   EXPECT_EQ(count(xml, "GeometryType=\"XYZ\""), 3u);
-  EXPECT_EQ(count(xml, "<Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">"),
-            6u);
-  EXPECT_EQ(count(xml, "<Attribute Name=\"temperature\" AttributeType=\"Scalar\" Center=\"Cell\">"),
-            6u);
-  EXPECT_EQ(count(xml, "<Attribute Name=\"active\" AttributeType=\"Scalar\" Center=\"Cell\">"), 6u);
+  // Names carry the unit; the eroded flag (1 - active) is what a threshold keeps out.
+  EXPECT_EQ(
+      count(xml, "<Attribute Name=\"velocity [m/s]\" AttributeType=\"Vector\" Center=\"Node\">"),
+      6u);
+  EXPECT_EQ(
+      count(xml, "<Attribute Name=\"temperature [K]\" AttributeType=\"Scalar\" Center=\"Cell\">"),
+      6u);
+  EXPECT_EQ(count(xml, "<Attribute Name=\"eroded\" AttributeType=\"Scalar\" Center=\"Cell\">"), 6u);
+  EXPECT_EQ(count(xml, "Name=\"active\""), 0u);
 
   // Each snapshot's times, in order.
   std::size_t at = 0;
@@ -357,12 +364,57 @@ TEST(ResultFile, empty_run_is_a_valid_pair) {
   EXPECT_EQ(s.history_columns.size(), k_columns.size());
   EXPECT_TRUE(read_history(h5, "time").empty());
   EXPECT_EQ(read_unit(h5, "/history/contact_force"), "N");
-  const std::string xml = read_text_file(dir.path() / "empty.xmf");
-  // One empty time step: ParaView's XDMF2 reader crashes on a childless collection.
-  EXPECT_EQ(count(xml, "CollectionType=\"Temporal\""), 1u);
-  EXPECT_EQ(count(xml, "CollectionType=\"Spatial\""), 1u);
-  EXPECT_EQ(count(xml, "<Grid "), count(xml, "</Grid>"));
-  EXPECT_EQ(count(xml, "<DataItem"), 0u);
+  // Nothing for ParaView to show: no .xmf (it would open with 0 points).
+  EXPECT_FALSE(fs::exists(dir.path() / "empty.xmf"));
+}
+
+TEST(ResultFile, a_stale_xdmf_goes_with_the_file_it_described) {
+  TempDir dir;
+  const fs::path h5 = dir.path() / "again.h5";
+  const std::vector<BodyTopology> bodies = {quad_grid("particle", 1, 1)};
+  {
+    ResultFile out(h5, bodies, k_columns);
+    const BodyData d = body_data(bodies[0], 0);
+    const std::vector<BodySnapshot> views = {view(bodies[0], d)};
+    out.write_snapshot(0.0, views);
+  }
+  ASSERT_TRUE(fs::exists(dir.path() / "again.xmf"));
+  { ResultFile out(h5, bodies, k_columns); }  // the same run again, without snapshots
+  EXPECT_FALSE(fs::exists(dir.path() / "again.xmf"));
+}
+
+TEST(ResultFile, point_bodies_are_points_with_point_data) {
+  TempDir dir;
+  const fs::path h5 = dir.path() / "sph.h5";
+  const BodyTopology cloud{"cloud", CellKind::point, 3, {}, 4};
+  const std::vector<double> x = values(12, 1.0), v = values(12, 2.0), T = values(4, 3.0);
+  const std::vector<double> sigma = values(24, 4.0);
+  const std::vector<int> active = {1, 0, 1, 1};
+  {
+    ResultFile out(h5, {cloud}, {{"time", "s"}});
+    BodySnapshot s;
+    s.body = "cloud";
+    s.coordinates = x;
+    s.fields = {{"velocity", "m/s", false, 3, v},
+                {"temperature", "K", true, 1, T},
+                {"stress", "Pa", true, 6, sigma}};
+    s.active_cells = active;
+    const std::vector<BodySnapshot> views = {s};
+    out.write_snapshot(1e-9, views);
+  }
+  const std::string xml = read_text_file(dir.path() / "sph.xmf");
+  EXPECT_EQ(count(xml, "TopologyType=\"Polyvertex\""), 1u);
+  EXPECT_EQ(count(xml, "Center=\"Cell\""), 0u);
+  EXPECT_EQ(count(xml, "Center=\"Node\""), 4u);
+  EXPECT_EQ(
+      count(xml, "<Attribute Name=\"stress [Pa]\" AttributeType=\"Tensor6\" Center=\"Node\">"), 1u);
+  EXPECT_EQ(read_snapshot_field(h5, 0, "cloud", "eroded"), (std::vector<double>{0, 1, 0, 0}));
+  EXPECT_EQ(read_snapshot_field(h5, 0, "cloud", "stress"), sigma);
+  for (const DataItemRef& item : data_items(xml)) {
+    const auto shape = read_dataset_shape(h5, item.path);
+    ASSERT_TRUE(shape.has_value()) << item.path;
+    EXPECT_EQ(*shape, item.dims) << item.path;
+  }
 }
 
 TEST(ResultFile, readable_when_the_run_is_cut_after_a_snapshot) {
