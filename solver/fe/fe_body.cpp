@@ -522,16 +522,16 @@ ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e) {
   if (!body.active[k]) return out;
   body.active[k] = 0;
   const int npe = body.nodes_per_element();
-  const double share = body.element_mass[k] / npe;
+  // A node keeps its whole mass while an active element still holds it (as
+  // explicit codes do: removing the eroded element's share would leave the
+  // neighbours of an eroded rim on nodes of a sliver's mass, which the next
+  // contact or element force flings off); a node left without an active
+  // element leaves the model with all its mass and kinetic energy.
   for (int a = 0; a < npe; ++a) {
     const std::size_t n = static_cast<std::size_t>(body.conn[k][a]);
-    // A node left without an active element loses all its mass (exactly 0:
-    // the shares subtracted one by one leave a rounding residue that would
-    // keep it live, and every figure read off live nodes would see it).
-    const bool orphan = !node_in_active_element(body, n);
-    const double m = orphan ? nodes.mass[n] : std::min(share, nodes.mass[n]);
-    out.kinetic += 0.5 * m * nodes.v[n].squaredNorm();
-    nodes.mass[n] = orphan ? 0.0 : std::max(nodes.mass[n] - share, 0.0);
+    if (node_in_active_element(body, n)) continue;
+    out.kinetic += 0.5 * nodes.mass[n] * nodes.v[n].squaredNorm();
+    nodes.mass[n] = 0.0;
   }
   out.internal = body.volume0[k] * body.state[k].e;
   out.mass = body.element_mass[k];

@@ -217,7 +217,8 @@ struct ErodedEnergy {
   double mass = 0.0;      // element mass, kg
 };
 
-// Deactivates element e and removes its mass share from its nodes.
+// Deactivates element e; a node no active element holds any more leaves the
+// model with its mass (nodes still held keep their whole mass).
 ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e);
 
 // Sum over active elements of V0 e, J (2D: per radian).
