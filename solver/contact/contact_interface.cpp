@@ -637,6 +637,7 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
     }
     build_problem(nodes, mask, pairs, dt);
     drop_repeated_rows(nodes, mask, pairs, dt);
+    limit_pushout(bodies);
     // Warm start: each pair starts from the multiplier it carried in the
     // last step, so a pressed contact needs only the sweeps that follow its
     // change over one step.
@@ -833,6 +834,24 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
     stats_.bond_energy = remaining * scale();
     stats_.max_bonded_area = std::max(stats_.max_bonded_area, stats_.bonded_area);
     stats_.max_links_active = std::max(stats_.max_links_active, stats_.links_active);
+  }
+}
+
+void ContactInterface::limit_pushout(const std::vector<FeBody>& bodies) {
+  const auto length_at = [&](int g) {
+    const std::size_t n = static_cast<std::size_t>(g);
+    for (const FeBody& b : bodies) {
+      if (n >= b.node_begin && n < b.node_end) return node_element_length(b, n);
+    }
+    return std::numeric_limits<double>::infinity();
+  };
+  for (std::size_t i = 0; i < pushout_.size(); ++i) {
+    if (!(pushout_[i] > 0.0)) continue;
+    double length = std::numeric_limits<double>::infinity();
+    for (int id : problem_.node[i]) {
+      if (id >= 0) length = std::min(length, length_at(local_nodes_[static_cast<std::size_t>(id)]));
+    }
+    pushout_[i] = std::min(pushout_[i], k_pushout_fraction * length);
   }
 }
 

@@ -206,11 +206,17 @@ class ContactInterface {
   // row (ContactSettings::max_row_correlation) and rebuilds problem_.
   void drop_repeated_rows(const NodeSet& nodes, const std::vector<std::uint8_t>& constraint_mask,
                           std::vector<DetectedPair>& pairs, double dt);
+  // Caps each pair's push-out at k_pushout_fraction of the smallest
+  // characteristic length of the FE elements holding its nodes: a push of a
+  // fraction of a large master face crushes a thin element behind the slave
+  // node in a few steps (an eroded rim exposing a node deep in the substrate).
+  void limit_pushout(const std::vector<FeBody>& bodies);
   // Split impulse, after the velocity solve (Lagrange): moves the nodes of
   // pairs that were already penetrating at x_n out by pushout_ (m) through
   // positions only. No velocity changes, so no kinetic energy is made; the
-  // stresses follow the velocity gradient, so no internal energy either:
-  // the correction does no work in the balance.
+  // deviatoric stresses follow the velocity gradient, but the pressure reads
+  // the volume, so the push is kept to a small fraction of the elements
+  // behind it (limit_pushout) to keep that unbooked work small.
   void correct_positions(NodeSet& nodes, const std::vector<DetectedPair>& pairs,
                          const ContactSolution& sol, double dt);
   double scale() const;

@@ -516,6 +516,16 @@ bool node_in_active_element(const FeBody& body, std::size_t n) {
 
 }  // namespace
 
+double node_element_length(const FeBody& body, std::size_t n) {
+  double length = std::numeric_limits<double>::infinity();
+  const std::size_t local = n - body.node_begin;
+  for (int k = body.node_elem_offsets[local]; k < body.node_elem_offsets[local + 1]; ++k) {
+    const std::size_t e = static_cast<std::size_t>(body.node_elem_entries[k] / 8);
+    if (body.active[e]) length = std::min(length, body.char_length[e]);
+  }
+  return length;
+}
+
 ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e) {
   ErodedEnergy out;
   const std::size_t k = static_cast<std::size_t>(e);

@@ -217,6 +217,10 @@ struct ErodedEnergy {
   double mass = 0.0;      // element mass, kg
 };
 
+// Smallest characteristic length (the time step's, m) of the active elements
+// holding global node n of `body`; +infinity when none holds it.
+double node_element_length(const FeBody& body, std::size_t n);
+
 // Deactivates element e; a node no active element holds any more leaves the
 // model with its mass (nodes still held keep their whole mass).
 ErodedEnergy erode_element(FeBody& body, NodeSet& nodes, int e);
