@@ -9,12 +9,13 @@
 
 #include "app/commands.hpp"
 #include "solver/build_info.hpp"
+#include "solver/common/omp_wait.hpp"
 
 int main(int argc, char** argv) {
   // Threads that finish their share of a step sleep instead of spinning:
   // campaigns run several jobs per machine, where spinning threads of one job
   // steal the cores of the others. A user's own setting wins.
-  setenv("OMP_WAIT_POLICY", "passive", 0);
+  splat::restart_with_passive_omp_wait(argv);
   CLI::App app{"splat: cold-spray particle impact simulator"};
   app.require_subcommand(0, 1);
   bool show_version = false;
@@ -31,6 +32,8 @@ int main(int argc, char** argv) {
   if (show_version) {
     std::printf("splat %s (commit %s)\n", std::string(splat::version()).c_str(),
                 std::string(splat::git_commit()).c_str());
+    const std::string policy = splat::omp_wait_policy_at_start();
+    std::printf("OpenMP wait policy: %s\n", policy.empty() ? "libgomp default" : policy.c_str());
     return 0;
   }
   for (auto& [sub, run] : commands) {

@@ -17,7 +17,13 @@
 // peak_bytes_per_particle: the growth of the process's peak resident set
 // (VmHWM) over its size before the scene was built, per particle (only
 // meaningful for the first run in the process, the 1-thread one).
+// Each thread count also runs beside a busy process (one spinning core,
+// forked and killed by the benchmark): there two threads must not be slower
+// than one (issue 28; passive OpenMP waiting, solver/common/omp_wait.hpp).
 #include <benchmark/benchmark.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <ctime>
@@ -25,6 +31,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "solver/common/omp_wait.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/input/scene_io.hpp"
 
@@ -75,8 +82,30 @@ nlohmann::json impact_scene() {
           {"time", {{"end_time", 1e-6}, {"max_steps", 150}, {"energy_balance_limit", 1.0}}}};
 }
 
+// A process that spins on one core until it is killed: the neighbour a
+// campaign job, a Slurm node or a laptop has.
+struct BusyNeighbour {
+  pid_t pid = -1;
+  explicit BusyNeighbour(bool on) {
+    if (!on) return;
+    pid = fork();
+    if (pid == 0) {
+      volatile unsigned long spin = 0;
+      for (;;) spin = spin + 1;
+    }
+  }
+  ~BusyNeighbour() {
+    if (pid <= 0) return;
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+  }
+  BusyNeighbour(const BusyNeighbour&) = delete;
+  BusyNeighbour& operator=(const BusyNeighbour&) = delete;
+};
+
 void BM_sph_al_al_impact(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
+  const BusyNeighbour neighbour(state.range(1) != 0);
   const double rss0 = proc_status_bytes("VmRSS:");
   const LoadedScene loaded = read_scene(impact_scene());
   double particles = 0.0, steps = 0.0, peak = 0.0, cpu = 0.0;
@@ -108,9 +137,14 @@ void BM_sph_al_al_impact(benchmark::State& state) {
   state.counters["peak_bytes_per_particle"] = (peak - rss0) / particles;
 }
 
+// Arguments: threads, and 1 for a busy process beside the run (two threads
+// must not be slower than one there: passive OpenMP waiting).
 BENCHMARK(BM_sph_al_al_impact)
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgNames({"threads", "busy_neighbour"})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
     ->UseManualTime()
     ->Iterations(2)
     ->Unit(benchmark::kMillisecond);
@@ -118,4 +152,11 @@ BENCHMARK(BM_sph_al_al_impact)
 }  // namespace
 }  // namespace splat
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  splat::restart_with_passive_omp_wait(argv);  // as the splat binary starts
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -20,6 +20,23 @@ TEST(cli, version_names_the_commit) {
   EXPECT_NE(o.stdout_text.find("commit "), std::string::npos) << o.stdout_text;
 }
 
+// libgomp reads OMP_WAIT_POLICY when it is loaded, before main: a setenv in
+// main left the process spinning (two threads 2x slower than passive ones
+// beside a busy process). splat starts again with the policy set; a user's
+// own setting wins.
+TEST(cli, starts_with_a_passive_openmp_wait_policy) {
+  using splat::test_support::run_command;
+  const auto unset =
+      run_command("env -u OMP_WAIT_POLICY " + std::string(SPLAT_BINARY) + " --version");
+  EXPECT_EQ(unset.code, 0);
+  EXPECT_NE(unset.stdout_text.find("OpenMP wait policy: passive"), std::string::npos)
+      << unset.stdout_text;
+  const auto active =
+      run_command("env OMP_WAIT_POLICY=active " + std::string(SPLAT_BINARY) + " --version");
+  EXPECT_NE(active.stdout_text.find("OpenMP wait policy: active"), std::string::npos)
+      << active.stdout_text;
+}
+
 TEST(cli, materials_lists_the_library) {
   const auto o = run_splat("materials");
   EXPECT_EQ(o.code, 0);
