@@ -100,9 +100,11 @@ json opt(const std::optional<double>& x) {
 }
 
 // Richardson estimate of the last three levels when the levels are numbers
-// with a constant ratio (finer = larger, like elements across).
+// with a constant ratio (finer = larger, like elements across); a quantity
+// that cannot be negative (an area) has none when it extrapolates below zero.
+enum class Sign { any, non_negative };
 std::optional<RichardsonEstimate> estimate(const std::vector<Level>& levels,
-                                           std::optional<double> Level::*field) {
+                                           std::optional<double> Level::*field, Sign sign) {
   const std::size_t n = levels.size();
   if (n < 3) return std::nullopt;
   const auto a = number(levels[n - 3].value), b = number(levels[n - 2].value),
@@ -111,7 +113,9 @@ std::optional<RichardsonEstimate> estimate(const std::vector<Level>& levels,
   if (!a || !b || !c || !f1 || !f2 || !f3 || !(*a > 0.0)) return std::nullopt;
   const double r = *b / *a;
   if (std::abs(*c / *b - r) > 1e-6 * r) return std::nullopt;
-  return richardson(*f1, *f2, *f3, r);
+  const auto e = richardson(*f1, *f2, *f3, r);
+  if (e && sign == Sign::non_negative && e->estimate < 0.0) return std::nullopt;
+  return e;
 }
 
 void print_value(const std::optional<double>& x, const char* fmt) {
@@ -146,8 +150,8 @@ int run_converge(const ConvergeOptions& o) {
   auto diff = [](const std::optional<double>& x, const std::optional<double>& ref) {
     return x && ref ? std::optional<double>(*x - *ref) : std::nullopt;
   };
-  const auto rv = estimate(levels, &Level::rebound_velocity);
-  const auto ba = estimate(levels, &Level::bonded_area);
+  const auto rv = estimate(levels, &Level::rebound_velocity, Sign::any);
+  const auto ba = estimate(levels, &Level::bonded_area, Sign::non_negative);
 
   if (o.json) {
     json doc = {{"scene", o.scene}, {"pointer", pointer}, {"levels", json::array()}};
@@ -193,8 +197,8 @@ int run_converge(const ConvergeOptions& o) {
                   e->estimate, unit, e->order);
     } else {
       std::printf(
-          "Richardson %s: none (needs three numeric levels at a constant ratio and a "
-          "monotone sequence)\n",
+          "Richardson %s: none (needs three numeric levels at a constant ratio, a "
+          "monotone sequence whose steps shrink, and a physical limit)\n",
           name);
     }
   };

@@ -30,7 +30,7 @@ std::optional<double> extrapolated(const std::vector<double>& levels,
   const double r1 = levels[n - 2] / levels[n - 3], r2 = levels[n - 1] / levels[n - 2];
   if (std::abs(r1 - r2) > k_ratio_tolerance * r2) return std::nullopt;
   const auto est = richardson(f[n - 3], f[n - 2], f[n - 1], r2);
-  if (!est || !(est->order > 0.0)) return std::nullopt;
+  if (!est) return std::nullopt;
   return est->estimate;
 }
 

@@ -4,7 +4,8 @@
 //   estimate        f* = f3 + (f3 - f2) / (r^p - 1)
 // (Roache 1998, "Verification and Validation in Computational Science and
 // Engineering", ch. 5). Defined only when the differences have the same sign
-// (monotone convergence) and r > 1; otherwise empty.
+// and shrink (monotone convergence, p > 0) and r > 1; otherwise empty (a
+// sequence whose differences grow diverges: no limit to extrapolate to).
 #pragma once
 
 #include <cmath>
@@ -22,7 +23,7 @@ inline std::optional<RichardsonEstimate> richardson(double f1, double f2, double
   if (!(r > 1.0) || !(d12 * d23 > 0.0) || !std::isfinite(d12 / d23)) return std::nullopt;
   const double p = std::log(d12 / d23) / std::log(r);
   const double denominator = std::pow(r, p) - 1.0;
-  if (!(std::abs(denominator) > 0.0) || !std::isfinite(p)) return std::nullopt;
+  if (!(p > 0.0) || !(std::abs(denominator) > 0.0) || !std::isfinite(p)) return std::nullopt;
   return RichardsonEstimate{p, f3 + (f3 - f2) / denominator};
 }
 

@@ -29,6 +29,7 @@ TEST(richardson, oscillating_or_stalled_sequences_have_no_estimate) {
   EXPECT_FALSE(richardson(1.0, 2.0, 1.5, 2.0));   // oscillates
   EXPECT_FALSE(richardson(1.0, 1.0, 1.0, 2.0));   // no change
   EXPECT_FALSE(richardson(1.0, 0.5, 0.25, 1.0));  // no refinement
+  EXPECT_FALSE(richardson(1.0, 0.9, 0.5, 2.0));   // differences grow: diverges
 }
 
 }  // namespace
