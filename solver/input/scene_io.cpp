@@ -682,6 +682,11 @@ TwoMassSpec parse_two_mass(const json& j, const TimeSpec& time, Problems& proble
   t.V0 = j.at("V0").get<double>();
   t.area = j.at("area").get<double>();
   t.adhesion = adhesion_from_json(j.at("adhesion"));
+  // Every energy of the run is of the order of M V0^2 / 2: it must be a number.
+  if (!std::isfinite(0.5 * t.M * t.V0 * t.V0)) {
+    problems.add("/two_mass/V0",
+                 "the kinetic energy M V0^2 / 2 must be finite in double precision (J)");
+  }
   if (t.adhesion.activation != ActivationRule::none) {
     problems.add("/two_mass/adhesion/activation/rule",
                  "must be \"none\": rigid masses have no yield stress to drop");

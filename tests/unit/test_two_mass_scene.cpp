@@ -135,6 +135,12 @@ TEST(two_mass_scene, bad_inputs_name_the_field_and_the_rule) {
   doc["two_mass"]["k"] = -1;
   expect_violation(doc, "/two_mass/k", "must be >= 0 (N/m)");
 
+  // Issue 28 item 11: V0 = 1e300 ran with infinite energies, printed them as
+  // null and exited 0.
+  doc = two_mass_scene();
+  doc["two_mass"]["V0"] = 1e300;
+  expect_violation(doc, "/two_mass/V0", "must be finite in double precision (J)");
+
   doc = two_mass_scene();
   doc["two_mass"].erase("area");
   expect_violation(doc, "/two_mass/area", "required field is missing");
