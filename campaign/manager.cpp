@@ -17,6 +17,7 @@
 
 #include "campaign/job_end.hpp"
 #include "campaign/ladders.hpp"
+#include "campaign/manager_lock.hpp"
 #include "campaign/process.hpp"
 #include "campaign/slurm.hpp"
 #include "solver/common/parallel.hpp"
@@ -235,6 +236,7 @@ std::vector<WindowRecord> compute_windows(Store& store, std::int64_t campaign_id
 }
 
 SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptions& options) {
+  const ManagerLock one_manager(store.path());
   const SceneResolver resolve = options.resolver ? options.resolver : splat_scene_resolver();
   const std::string version =
       options.solver_version.empty() ? solver_version_string() : options.solver_version;
