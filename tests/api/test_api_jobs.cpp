@@ -72,6 +72,26 @@ TEST(api_jobs, job_document_histories_and_download) {
   }
 }
 
+// A store holding one campaign with one finished job `hash` whose result
+// names `hdf5_path`.
+void store_one_finished_job(const fs::path& db, const std::string& name, const std::string& hash,
+                            const fs::path& hdf5_path) {
+  campaign::Store store(db);
+  campaign::CampaignRecord rec;
+  rec.name = name;
+  rec.spec_hash = std::string(64, 'e');
+  rec.spec = "{}";
+  const auto cid = store.open_campaign(rec);
+  store.add_points(cid, {{{"{}", "{}", 1.0, hash, "grid"}, "{}", "v"}}, false);
+  store.claim_next_job(cid, "test:1:1", "test");
+  campaign::ResultRecord res;
+  res.job_hash = hash;
+  res.outcome = "stick";
+  res.summary = "{}";
+  res.hdf5_path = hdf5_path.string();
+  store.finish_job(hash, campaign::JobState::succeeded, "stick", 0.1, 1, res);
+}
+
 TEST(api_jobs, a_missing_result_file_is_an_error_not_silence) {
   TempDir dir;
   api::ServerOptions o = options_for(dir);
@@ -80,22 +100,8 @@ TEST(api_jobs, a_missing_result_file_is_an_error_not_silence) {
   // inside the jobs folder that is not there.
   const std::string hash(64, 'd');
   fs::create_directories(dir.path / "store.db.jobs");
-  {
-    campaign::Store store(o.db);
-    campaign::CampaignRecord rec;
-    rec.name = "copied";
-    rec.spec_hash = std::string(64, 'e');
-    rec.spec = "{}";
-    const auto cid = store.open_campaign(rec);
-    store.add_points(cid, {{{"{}", "{}", 1.0, hash, "grid"}, "{}", "v"}}, false);
-    store.claim_next_job(cid, "test:1:1", "test");
-    campaign::ResultRecord res;
-    res.job_hash = hash;
-    res.outcome = "stick";
-    res.summary = "{}";
-    res.hdf5_path = (dir.path / "store.db.jobs" / hash / "out" / "run.h5").string();
-    store.finish_job(hash, campaign::JobState::succeeded, "stick", 0.1, 1, res);
-  }
+  store_one_finished_job(o.db, "copied", hash,
+                         dir.path / "store.db.jobs" / hash / "out" / "run.h5");
   ServerHandle server(o);
   httplib::Client c = server.client();
   auto job = c.Get(("/api/v1/jobs/" + hash).c_str());
@@ -117,22 +123,8 @@ TEST(api_jobs, a_result_path_outside_the_jobs_folder_is_never_served) {
   // moved store): the API must refuse to serve that file.
   const std::string hash(64, 'b');
   fs::create_directories(dir.path / "store.db.jobs");  // so that ".." through it resolves
-  {
-    campaign::Store store(o.db);
-    campaign::CampaignRecord rec;
-    rec.name = "tampered";
-    rec.spec_hash = std::string(64, 'c');
-    rec.spec = "{}";
-    const auto cid = store.open_campaign(rec);
-    store.add_points(cid, {{{"{}", "{}", 1.0, hash, "grid"}, "{}", "v"}}, false);
-    store.claim_next_job(cid, "test:1:1", "test");
-    campaign::ResultRecord res;
-    res.job_hash = hash;
-    res.outcome = "stick";
-    res.summary = "{}";
-    res.hdf5_path = (dir.path / "store.db.jobs" / ".." / ".." / "outside.h5").string();
-    store.finish_job(hash, campaign::JobState::succeeded, "stick", 0.1, 1, res);
-  }
+  store_one_finished_job(o.db, "tampered", hash,
+                         dir.path / "store.db.jobs" / ".." / ".." / "outside.h5");
   { std::ofstream(dir.path.parent_path() / "outside.h5") << "secret"; }
   ServerHandle server(o);
   httplib::Client c = server.client();
