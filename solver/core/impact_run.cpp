@@ -326,9 +326,9 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
     eroded_fraction = total > 0.0 ? gone / total : 0.0;
   }
 
-  bool own_end = settled.has_value() || s.stop_reason == "end-time";
+  bool own_end = settled.has_value() || s.stop_reason == StopReason::end_time;
   std::string guard_reason;
-  const std::string failed =
+  const std::optional<StopReason> failed =
       check_physics(model, s.energy, GuardInput{particle_, substrate_, contact_, energy_limit_},
                     r.guard, guard_reason);
   r.bond_energy = now.bond_energy;
@@ -338,18 +338,18 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
   if (own_end && eroded_fraction > spec_.max_eroded_fraction) {
     own_end = false;
     s.outcome = RunOutcome::unstable;
-    s.stop_reason = "erosion-limit";
+    s.stop_reason = StopReason::erosion_limit;
     s.reason = format_reason(
         "no verdict: %.1f %% of the particle's mass was eroded (limit max_eroded_fraction "
         "%.0f %%): the particle broke up (elements at the damage cap) or its mesh could not "
         "follow the deformation",
         100.0 * eroded_fraction, 100.0 * spec_.max_eroded_fraction);
-  } else if (own_end && !failed.empty()) {
+  } else if (own_end && failed) {
     own_end = false;
     s.outcome = RunOutcome::unstable;
     s.stop_reason = failed;
     s.reason = "no verdict: " + guard_reason;
-  } else if (!own_end && s.stop_reason == "energy-balance") {
+  } else if (!own_end && s.stop_reason == StopReason::energy_balance) {
     // Say which term broke the balance (all as fractions of the initial energy).
     const EnergyBudget& e = s.energy;
     const double E0 = std::max(e.initial_total, 1e-300);
@@ -362,7 +362,7 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
       own_end ? std::optional(settled ? *settled : monitor_.at_end(now)) : std::nullopt;
   if (decision && decision->verdict == ImpactVerdict::undecided) {
     s.outcome = RunOutcome::unstable;
-    s.stop_reason = "undecided";
+    s.stop_reason = StopReason::undecided;
     s.reason = "no verdict: " + decision->reason;
     r.verdict = "none";
   } else if (decision) {
@@ -372,9 +372,9 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
     s.outcome = stick ? RunOutcome::stick : RunOutcome::rebound;
     s.reason = decision->reason;
     if (!spec_.adaptive_end) {
-      s.stop_reason = "end-time";
+      s.stop_reason = StopReason::end_time;
     } else {
-      s.stop_reason = settled ? "verdict-settled" : "max-time";
+      s.stop_reason = settled ? StopReason::verdict_settled : StopReason::max_time;
     }
   } else {
     r.verdict = "none";

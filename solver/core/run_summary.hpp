@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "solver/common/types.hpp"
+#include "solver/core/stop_reason.hpp"
 
 namespace splat {
 
@@ -110,7 +111,7 @@ struct GuardFigures {
   long long nodes_through = 0;            // nodes deeper than the limit
   double eroded_energy_fraction = 0.0;    // -, eroded energy over the reference energy
   double internal_energy_fraction = 0.0;  // -, internal energy over the reference energy
-  std::string failed;                     // name of the failed check, empty when all passed
+  std::optional<StopReason> failed;       // the failed check, none when all passed
 };
 
 // Figures of a particle_impact run (solver/core/impact_run.hpp says how each
@@ -157,8 +158,8 @@ struct ImpactSummary {
 struct RunSummary {
   std::string scene;
   RunOutcome outcome = RunOutcome::finished;
-  std::string reason;       // why it ended this way, for people
-  std::string stop_reason;  // short machine-readable cause: end-time, energy-balance, ...
+  std::string reason;                     // why it ended this way, for people
+  std::optional<StopReason> stop_reason;  // machine-readable cause, none until the run stops
   long long steps = 0;
   double end_time = 0.0;      // s
   double wall_seconds = 0.0;  // s
