@@ -258,10 +258,7 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
     // Full 3D models (fe-3d-full, sph-3d-full, sph-on-fe-3d-full): lateral
     // radius about the particle's axis through its centre of mass; quarter
     // and axisymmetric models: about the z axis.
-    const std::string full_suffix = "3d-full";
-    const bool full_3d = !model.axisymmetric && spec_.model.size() >= full_suffix.size() &&
-                         spec_.model.compare(spec_.model.size() - full_suffix.size(),
-                                             full_suffix.size(), full_suffix) == 0;
+    const bool full_3d = !model.axisymmetric && spec_.model && is_full_3d(*spec_.model);
     double cx = 0.0, cy = 0.0, m = 0.0;
     if (full_3d) {
       for (std::size_t i = body.begin; i < body.end; ++i) {
@@ -442,7 +439,7 @@ void write_impact_attributes(ResultFile& file, const RunSummary& s) {
   file.set_attribute("hold_time", r.hold_time, "s");
   file.set_attribute("max_time", r.max_time, "s");
   file.set_attribute("end_time_rule", r.adaptive ? "adaptive" : "fixed");
-  file.set_attribute("model.name", r.model);
+  file.set_attribute("model.name", name_or_empty(r.model));
   file.set_attribute("model.why", r.why);
 }
 

@@ -143,7 +143,7 @@ nlohmann::json to_json(const RunSummary& s) {
     j["hold_time"] = r.hold_time;
     j["max_time"] = r.max_time;
     j["end_time_rule"] = r.adaptive ? "adaptive" : "fixed";
-    j["model"] = {{"name", r.model}, {"why", r.why}};
+    j["model"] = {{"name", name_or_empty(r.model)}, {"why", r.why}};
     j["cohesive_zone"] = {{"length", r.cohesive_zone_length},
                           {"element_size", r.interface_element_size},
                           {"elements", r.cohesive_zone_elements}};

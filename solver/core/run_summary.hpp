@@ -9,6 +9,7 @@
 
 #include "solver/common/types.hpp"
 #include "solver/core/stop_reason.hpp"
+#include "solver/scene/fidelity.hpp"
 
 namespace splat {
 
@@ -142,7 +143,7 @@ struct ImpactSummary {
   double hold_time = 0.0;               // s
   double max_time = 0.0;                // s
   bool adaptive = true;
-  std::string model;  // fe-axisym, fe-3d-quarter, fe-3d-full
+  std::optional<Fidelity> model;  // the impact spec's
   std::string why;
   GuardFigures guard;
   // Adhesion: the interface law's process zone (cohesive_law.hpp) against the

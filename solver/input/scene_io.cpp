@@ -840,7 +840,8 @@ void apply_override(json& doc, const std::string& text) {
 }
 
 // The impact run's view of an expanded particle_impact block (it carries the
-// model the expansion chose under "model").
+// model the expansion chose under "model"). Throws InputError for a model
+// name that is no fidelity.
 ImpactSpec impact_spec(const json& block) {
   ImpactSpec impact;
   const json model = block.value("model", json::object());
@@ -849,7 +850,13 @@ ImpactSpec impact_spec(const json& block) {
   impact.angle = block.value("angle", 0.0);
   impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
   impact.max_eroded_fraction = block.value("max_eroded_fraction", impact.max_eroded_fraction);
-  impact.model = model.value("name", "");
+  if (const auto name = model.find("name"); name != model.end()) {
+    impact.model = parse<Fidelity>(name->get<std::string>());
+    if (!impact.model) {
+      throw InputError({{"/particle_impact/model/name",
+                         "unknown model " + name->dump() + " (a fidelity other than auto)"}});
+    }
+  }
   impact.why = model.value("why", "");
   return impact;
 }

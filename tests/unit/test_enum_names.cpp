@@ -1,6 +1,6 @@
 // The name tables of the enums that leave the program (solver/common/enum_names.hpp):
 // every value has one name and reads back from it, unknown names read as
-// none, and the names are the ones already written to results and stores.
+// none, and the names are the ones results, stores and schemas already hold.
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -10,6 +10,8 @@
 
 #include "solver/common/enum_names.hpp"
 #include "solver/core/stop_reason.hpp"
+#include "solver/input/schema.hpp"
+#include "solver/scene/fidelity.hpp"
 
 namespace splat {
 namespace {
@@ -76,6 +78,40 @@ TEST(EnumNames, stop_reason_names_are_the_ones_results_hold) {
                                                                "settled",
                                                                "budget-exceeds-energy",
                                                                "end-time-predicted"}));
+}
+
+TEST(EnumNames, fidelities_round_trip) {
+  expect_round_trip<Fidelity>();
+  for (const char* unknown : {"", "auto", "fe-3d", "fe_axisym", "sph-3d-*"}) {
+    EXPECT_FALSE(parse<Fidelity>(unknown)) << unknown;
+  }
+}
+
+// The scene schema's fidelity choices are auto and the table's names.
+TEST(EnumNames, scene_schema_lists_the_fidelities) {
+  const nlohmann::json& choices =
+      schema_document("scene")["definitions"]["particle_impact"]["properties"]["fidelity"]["enum"];
+  std::vector<std::string> expected = {"auto"};
+  for (const std::string& name : all_names<Fidelity>()) expected.push_back(name);
+  EXPECT_EQ(choices.get<std::vector<std::string>>(), expected);
+}
+
+// Every 3D fidelity has two symmetry planes or none; only fe-axisym is
+// axisymmetric; an SPH substrate goes with an SPH particle; each predicate
+// agrees with the names (sph-*, sph-3d-*, *-quarter, *3d-full).
+TEST(EnumNames, fidelity_predicates_partition_the_models) {
+  for (std::size_t i = 0; i < names_of(Fidelity{}).size(); ++i) {
+    const auto f = static_cast<Fidelity>(i);
+    const bool three_d = f != Fidelity::two_mass && f != Fidelity::fe_axisym;
+    EXPECT_EQ(is_quarter(f) || is_full_3d(f), three_d) << to_string(f);
+    EXPECT_FALSE(is_quarter(f) && is_full_3d(f)) << to_string(f);
+    EXPECT_EQ(is_axisymmetric(f), f == Fidelity::fe_axisym) << to_string(f);
+    EXPECT_EQ(is_quarter(f), to_string(f).ends_with("-quarter")) << to_string(f);
+    EXPECT_EQ(is_full_3d(f), to_string(f).ends_with("3d-full")) << to_string(f);
+    EXPECT_EQ(has_sph_particle(f), to_string(f).starts_with("sph-")) << to_string(f);
+    EXPECT_EQ(has_sph_substrate(f), to_string(f).starts_with("sph-3d-")) << to_string(f);
+    EXPECT_TRUE(!has_sph_substrate(f) || has_sph_particle(f)) << to_string(f);
+  }
 }
 
 }  // namespace
