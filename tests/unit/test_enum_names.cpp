@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "campaign/spec.hpp"
 #include "solver/common/enum_names.hpp"
 #include "solver/core/stop_reason.hpp"
 #include "solver/input/schema.hpp"
@@ -111,6 +112,23 @@ TEST(EnumNames, fidelity_predicates_partition_the_models) {
     EXPECT_EQ(has_sph_particle(f), to_string(f).starts_with("sph-")) << to_string(f);
     EXPECT_EQ(has_sph_substrate(f), to_string(f).starts_with("sph-3d-")) << to_string(f);
     EXPECT_TRUE(!has_sph_substrate(f) || has_sph_particle(f)) << to_string(f);
+  }
+}
+
+TEST(EnumNames, executors_round_trip) {
+  expect_round_trip<campaign::ExecutorKind>();
+  for (const char* unknown : {"", "Slurm", "local "}) {
+    EXPECT_FALSE(parse<campaign::ExecutorKind>(unknown)) << unknown;
+  }
+}
+
+// A campaign file and the API's campaign document offer the table's executors.
+TEST(EnumNames, campaign_schemas_list_the_executors) {
+  const std::vector<std::string> names = all_names<campaign::ExecutorKind>();
+  EXPECT_EQ(names, (std::vector<std::string>{"local", "slurm"}));
+  for (const char* schema : {"campaign", "api_campaign"}) {
+    const nlohmann::json& choices = schema_document(schema)["properties"]["executor"]["enum"];
+    EXPECT_EQ(choices.get<std::vector<std::string>>(), names) << schema;
   }
 }
 
