@@ -911,7 +911,7 @@ struct Server::Impl {
     rec.spec_hash = campaign::spec_hash(spec);
     rec.spec = spec.document.dump();
     rec.tags = json(spec.tags).dump();
-    rec.executor = spec.executor == campaign::ExecutorKind::slurm ? "slurm" : "local";
+    rec.executor = splat::to_string(spec.executor);
     rec.priority = spec.priority;
     std::vector<campaign::NewPoint> pts;
     for (const campaign::ExpandedJob& j : jobs) {
@@ -997,8 +997,9 @@ struct Server::Impl {
   // schema's maximum bounds Slurm jobs).
   void check_job_threads(const json& doc, std::vector<SchemaViolation>& out) const {
     if (!doc.contains("job") || !doc["job"].contains("threads")) return;
-    const bool slurm = o.executor ? *o.executor == campaign::ExecutorKind::slurm
-                                  : doc.value("executor", "local") == "slurm";
+    const auto executor =
+        o.executor ? o.executor : parse<campaign::ExecutorKind>(doc.value("executor", "local"));
+    const bool slurm = executor == campaign::ExecutorKind::slurm;
     if (slurm || doc["job"]["threads"].get<long long>() <= splat::max_threads()) return;
     out.push_back({"/job/threads", "must be <= " + std::to_string(splat::max_threads()) +
                                        " (-): the cores of the machine this server runs "

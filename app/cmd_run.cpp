@@ -70,8 +70,9 @@ void print_human(const RunSummary& s) {
   }
   if (s.impact) {
     const ImpactSummary& r = *s.impact;
-    std::printf("  impact %s: verdict %s (%s), stop %s\n", r.model.c_str(), r.verdict.c_str(),
-                r.settled ? "settled" : "not settled", s.stop_reason.c_str());
+    std::printf("  impact %s: verdict %s (%s), stop %s\n", name_or_empty(r.model).c_str(),
+                r.verdict.c_str(), r.settled ? "settled" : "not settled",
+                name_or_empty(s.stop_reason).c_str());
     std::printf(
         "    rebound velocity %.4g m/s (COR %.3f), bonded area %.4e m^2 (%.1f %% of %.4e)\n",
         r.rebound_velocity, r.coefficient_of_restitution, r.bonded_area, 100.0 * r.bonded_fraction,

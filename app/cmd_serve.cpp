@@ -63,10 +63,7 @@ int run_serve(const ServeOptions& o) {
   so.host = o.host;
   so.port = o.port;
   so.workers = o.workers;
-  if (!o.executor.empty()) {
-    so.executor =
-        o.executor == "slurm" ? campaign::ExecutorKind::slurm : campaign::ExecutorKind::local;
-  }
+  so.executor = parse<campaign::ExecutorKind>(o.executor);  // "": each campaign's
   if (!o.token_file.empty()) so.token = read_token(o.token_file);
   if (!o.web_dir.empty()) {
     so.web_dir = o.web_dir;
@@ -118,7 +115,7 @@ void register_serve(CLI::App& app, CommandTable& commands) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   sub->add_option("--executor", o->executor, "local or slurm (default: each campaign's)")
-      ->check(CLI::IsMember({"local", "slurm"}));
+      ->check(CLI::IsMember(all_names<campaign::ExecutorKind>()));
   sub->add_option("--token-file", o->token_file,
                   "File holding the bearer token that mutating requests must carry");
   sub->add_option("--web-dir", o->web_dir, "Dashboard folder (web/ after `npm ci`)")

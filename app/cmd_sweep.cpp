@@ -37,7 +37,7 @@ void register_sweep(CLI::App& app, CommandTable& commands) {
   sub->add_option("--db", o->run.db, "SQLite store")->capture_default_str();
   sub->add_option("--workers", o->run.workers, "Jobs run at once")->capture_default_str();
   sub->add_option("--executor", o->run.executor, "local or slurm (default: the campaign's)")
-      ->check(CLI::IsMember({"local", "slurm"}));
+      ->check(CLI::IsMember(all_names<campaign::ExecutorKind>()));
   sub->add_flag("--rerun", o->run.rerun, "Recompute jobs even when results are stored");
   sub->add_option("--job-program", o->run.job_program,
                   "Program run for each job (default: this splat)");

@@ -93,10 +93,7 @@ class ProgressPrinter {
 }  // namespace
 
 int run_and_print(campaign::CampaignSpec spec, const SweepRun& o) {
-  if (!o.executor.empty()) {
-    spec.executor =
-        o.executor == "slurm" ? campaign::ExecutorKind::slurm : campaign::ExecutorKind::local;
-  }
+  if (const auto executor = parse<campaign::ExecutorKind>(o.executor)) spec.executor = *executor;
   if (o.workers < 1) throw InputError(std::vector<SchemaViolation>{{"--workers", "must be >= 1"}});
   campaign::Store store(o.db);
   install_interrupt_handler();

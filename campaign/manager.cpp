@@ -269,7 +269,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   rec.spec_hash = spec_hash(spec);
   rec.spec = spec.document.dump();
   rec.tags = json(spec.tags).dump();
-  rec.executor = spec.executor == ExecutorKind::slurm ? "slurm" : "local";
+  rec.executor = splat::to_string(spec.executor);
   rec.priority = spec.priority;
 
   auto to_new_points = [&](const std::vector<ExpandedJob>& jobs, const char* origin) {

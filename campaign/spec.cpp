@@ -195,7 +195,7 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
   }
   s.priority = doc.value("priority", 0);
   s.executor =
-      doc.value("executor", "local") == "slurm" ? ExecutorKind::slurm : ExecutorKind::local;
+      splat::parse<ExecutorKind>(doc.value("executor", "local")).value_or(ExecutorKind::local);
   if (!problems.empty()) throw InputError(std::move(problems));
   s.document = doc;
   s.document["base_scene"] = s.base_scene;

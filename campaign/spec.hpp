@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "solver/common/enum_names.hpp"
+
 namespace splat::campaign {
 
 // One parameter axis: a name (the spec key, or the pointer for `fields`), the
@@ -43,6 +45,16 @@ struct JobOptions {
 };
 
 enum class ExecutorKind { local, slurm };
+
+inline constexpr NameTable<ExecutorKind, 2> k_executor_names{{
+    {ExecutorKind::local, "local"},
+    {ExecutorKind::slurm, "slurm"},
+}};
+static_assert(names_in_order(k_executor_names));
+
+constexpr const auto& names_of(ExecutorKind) {
+  return k_executor_names;
+}
 
 struct CampaignSpec {
   std::string name;

@@ -258,10 +258,7 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
     // Full 3D models (fe-3d-full, sph-3d-full, sph-on-fe-3d-full): lateral
     // radius about the particle's axis through its centre of mass; quarter
     // and axisymmetric models: about the z axis.
-    const std::string full_suffix = "3d-full";
-    const bool full_3d = !model.axisymmetric && spec_.model.size() >= full_suffix.size() &&
-                         spec_.model.compare(spec_.model.size() - full_suffix.size(),
-                                             full_suffix.size(), full_suffix) == 0;
+    const bool full_3d = !model.axisymmetric && spec_.model && is_full_3d(*spec_.model);
     double cx = 0.0, cy = 0.0, m = 0.0;
     if (full_3d) {
       for (std::size_t i = body.begin; i < body.end; ++i) {
@@ -326,9 +323,9 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
     eroded_fraction = total > 0.0 ? gone / total : 0.0;
   }
 
-  bool own_end = settled.has_value() || s.stop_reason == "end-time";
+  bool own_end = settled.has_value() || s.stop_reason == StopReason::end_time;
   std::string guard_reason;
-  const std::string failed =
+  const std::optional<StopReason> failed =
       check_physics(model, s.energy, GuardInput{particle_, substrate_, contact_, energy_limit_},
                     r.guard, guard_reason);
   r.bond_energy = now.bond_energy;
@@ -338,18 +335,18 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
   if (own_end && eroded_fraction > spec_.max_eroded_fraction) {
     own_end = false;
     s.outcome = RunOutcome::unstable;
-    s.stop_reason = "erosion-limit";
+    s.stop_reason = StopReason::erosion_limit;
     s.reason = format_reason(
         "no verdict: %.1f %% of the particle's mass was eroded (limit max_eroded_fraction "
         "%.0f %%): the particle broke up (elements at the damage cap) or its mesh could not "
         "follow the deformation",
         100.0 * eroded_fraction, 100.0 * spec_.max_eroded_fraction);
-  } else if (own_end && !failed.empty()) {
+  } else if (own_end && failed) {
     own_end = false;
     s.outcome = RunOutcome::unstable;
     s.stop_reason = failed;
     s.reason = "no verdict: " + guard_reason;
-  } else if (!own_end && s.stop_reason == "energy-balance") {
+  } else if (!own_end && s.stop_reason == StopReason::energy_balance) {
     // Say which term broke the balance (all as fractions of the initial energy).
     const EnergyBudget& e = s.energy;
     const double E0 = std::max(e.initial_total, 1e-300);
@@ -362,7 +359,7 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
       own_end ? std::optional(settled ? *settled : monitor_.at_end(now)) : std::nullopt;
   if (decision && decision->verdict == ImpactVerdict::undecided) {
     s.outcome = RunOutcome::unstable;
-    s.stop_reason = "undecided";
+    s.stop_reason = StopReason::undecided;
     s.reason = "no verdict: " + decision->reason;
     r.verdict = "none";
   } else if (decision) {
@@ -372,9 +369,9 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
     s.outcome = stick ? RunOutcome::stick : RunOutcome::rebound;
     s.reason = decision->reason;
     if (!spec_.adaptive_end) {
-      s.stop_reason = "end-time";
+      s.stop_reason = StopReason::end_time;
     } else {
-      s.stop_reason = settled ? "verdict-settled" : "max-time";
+      s.stop_reason = settled ? StopReason::verdict_settled : StopReason::max_time;
     }
   } else {
     r.verdict = "none";
@@ -442,7 +439,7 @@ void write_impact_attributes(ResultFile& file, const RunSummary& s) {
   file.set_attribute("hold_time", r.hold_time, "s");
   file.set_attribute("max_time", r.max_time, "s");
   file.set_attribute("end_time_rule", r.adaptive ? "adaptive" : "fixed");
-  file.set_attribute("model.name", r.model);
+  file.set_attribute("model.name", name_or_empty(r.model));
   file.set_attribute("model.why", r.why);
 }
 

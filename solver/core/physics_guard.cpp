@@ -225,8 +225,9 @@ Interpenetration measure_interpenetration(const Model& model, const GuardInput& 
   return out;
 }
 
-std::string check_physics(const Model& model, const EnergyBudget& energy, const GuardInput& in,
-                          GuardFigures& figures, std::string& reason) {
+std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& energy,
+                                        const GuardInput& in, GuardFigures& figures,
+                                        std::string& reason) {
   const Interpenetration p = measure_interpenetration(model, in);
   figures.interpenetration_checked = p.checked;
   figures.max_interpenetration = p.max_depth;
@@ -244,7 +245,7 @@ std::string check_physics(const Model& model, const EnergyBudget& energy, const 
                   "let the particle through",
                   p.nodes_through, k_interpenetration_limit, p.max_depth, p.max_ratio);
     reason = buf;
-    return figures.failed = "interpenetration";
+    return figures.failed = StopReason::interpenetration;
   }
   if (energy.eroded < -in.energy_limit * reference) {
     std::snprintf(buf, sizeof buf,
@@ -252,17 +253,17 @@ std::string check_physics(const Model& model, const EnergyBudget& energy, const 
                   "erosion bookkeeping broke",
                   figures.eroded_energy_fraction, in.energy_limit);
     reason = buf;
-    return figures.failed = "negative-eroded-energy";
+    return figures.failed = StopReason::negative_eroded_energy;
   }
   if (energy.internal < -in.energy_limit * reference) {
     std::snprintf(buf, sizeof buf,
                   "negative internal energy: %.3g of the reference energy (limit -%.3g)",
                   figures.internal_energy_fraction, in.energy_limit);
     reason = buf;
-    return figures.failed = "negative-internal-energy";
+    return figures.failed = StopReason::negative_internal_energy;
   }
-  figures.failed.clear();
-  return {};
+  figures.failed.reset();
+  return std::nullopt;
 }
 
 }  // namespace splat

@@ -16,6 +16,7 @@
 // -energy_limit x the reference energy means the bookkeeping broke.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "solver/core/model_builder.hpp"
@@ -33,10 +34,11 @@ struct GuardInput {
   double energy_limit = 0.0;  // the scene's energy_balance_limit, -
 };
 
-// Checks `model` and `energy`; fills `figures` (always) and returns the name
-// of the first failed check ("" when all pass), with its reason in `reason`.
-std::string check_physics(const Model& model, const EnergyBudget& energy, const GuardInput& in,
-                          GuardFigures& figures, std::string& reason);
+// Checks `model` and `energy`; fills `figures` (always) and returns the first
+// failed check (none when all pass), with its reason in `reason`.
+std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& energy,
+                                        const GuardInput& in, GuardFigures& figures,
+                                        std::string& reason);
 
 // Deepest live particle node inside a live substrate element (above), and
 // how many nodes are deeper than the limit.

@@ -49,7 +49,7 @@ nlohmann::json to_json(const RunSummary& s) {
   j["scene"] = s.scene;
   j["outcome"] = to_string(s.outcome);
   j["reason"] = s.reason;
-  j["stop_reason"] = s.stop_reason;
+  j["stop_reason"] = name_or_empty(s.stop_reason);
   j["steps"] = s.steps;
   j["end_time"] = s.end_time;
   j["wall_seconds"] = s.wall_seconds;
@@ -143,7 +143,7 @@ nlohmann::json to_json(const RunSummary& s) {
     j["hold_time"] = r.hold_time;
     j["max_time"] = r.max_time;
     j["end_time_rule"] = r.adaptive ? "adaptive" : "fixed";
-    j["model"] = {{"name", r.model}, {"why", r.why}};
+    j["model"] = {{"name", name_or_empty(r.model)}, {"why", r.why}};
     j["cohesive_zone"] = {{"length", r.cohesive_zone_length},
                           {"element_size", r.interface_element_size},
                           {"elements", r.cohesive_zone_elements}};
@@ -156,7 +156,7 @@ nlohmann::json to_json(const RunSummary& s) {
                   {"nodes_through", g.nodes_through},
                   {"eroded_energy_fraction", g.eroded_energy_fraction},
                   {"internal_energy_fraction", g.internal_energy_fraction},
-                  {"failed", g.failed}};
+                  {"failed", name_or_empty(g.failed)}};
   }
   j["output"] = {{"hdf5", path_or_null(s.hdf5_path)}, {"xdmf", path_or_null(s.xdmf_path)}};
   return j;

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "solver/common/types.hpp"
+#include "solver/core/stop_reason.hpp"
+#include "solver/scene/fidelity.hpp"
 
 namespace splat {
 
@@ -110,7 +112,7 @@ struct GuardFigures {
   long long nodes_through = 0;            // nodes deeper than the limit
   double eroded_energy_fraction = 0.0;    // -, eroded energy over the reference energy
   double internal_energy_fraction = 0.0;  // -, internal energy over the reference energy
-  std::string failed;                     // name of the failed check, empty when all passed
+  std::optional<StopReason> failed;       // the failed check, none when all passed
 };
 
 // Figures of a particle_impact run (solver/core/impact_run.hpp says how each
@@ -141,7 +143,7 @@ struct ImpactSummary {
   double hold_time = 0.0;               // s
   double max_time = 0.0;                // s
   bool adaptive = true;
-  std::string model;  // fe-axisym, fe-3d-quarter, fe-3d-full
+  std::optional<Fidelity> model;  // the impact spec's
   std::string why;
   GuardFigures guard;
   // Adhesion: the interface law's process zone (cohesive_law.hpp) against the
@@ -157,8 +159,8 @@ struct ImpactSummary {
 struct RunSummary {
   std::string scene;
   RunOutcome outcome = RunOutcome::finished;
-  std::string reason;       // why it ended this way, for people
-  std::string stop_reason;  // short machine-readable cause: end-time, energy-balance, ...
+  std::string reason;                     // why it ended this way, for people
+  std::optional<StopReason> stop_reason;  // machine-readable cause, none until the run stops
   long long steps = 0;
   double end_time = 0.0;      // s
   double wall_seconds = 0.0;  // s

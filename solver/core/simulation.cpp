@@ -197,14 +197,14 @@ bool Simulation::Impl::internal_forces(RunSummary& s) {
     }
     if (r.return_failed) {
       s.outcome = RunOutcome::unstable;
-      s.stop_reason = "return-mapping";
+      s.stop_reason = StopReason::return_mapping;
       s.reason =
           "the return mapping of the strength law did not converge in body '" + body.name + "'";
       return false;
     }
     if (r.inverted > 0) {
       s.outcome = RunOutcome::unstable;
-      s.stop_reason = "element-inverted";
+      s.stop_reason = StopReason::element_inverted;
       s.reason = std::to_string(r.inverted) + " element(s) of body '" + body.name +
                  "' inverted (non-positive volume) and erosion is off";
       return false;
@@ -342,11 +342,11 @@ void Simulation::Impl::compute_energies() {
 }
 
 std::optional<std::pair<RunOutcome, std::string>> Simulation::Impl::checks(
-    const std::chrono::steady_clock::time_point& start, std::string& stop_reason) {
+    const std::chrono::steady_clock::time_point& start, std::optional<StopReason>& stop_reason) {
   const TimeSpec& ts = scene.time;
   if (!std::isfinite(energy.kinetic) || !std::isfinite(energy.internal) ||
       !std::isfinite(dt_stable)) {
-    stop_reason = "non-finite";
+    stop_reason = StopReason::non_finite;
     return std::pair{RunOutcome::unstable,
                      "non-finite state (NaN or infinity) at step " + std::to_string(step)};
   }
@@ -355,7 +355,7 @@ std::optional<std::pair<RunOutcome, std::string>> Simulation::Impl::checks(
   // element asks for; stopping names the cause instead of running for hours.
   const double dt_floor = ts.min_time_step > 0.0 ? ts.min_time_step : 1e-3 * dt_first;
   if (ts.stability_coefficient * dt_stable < dt_floor) {
-    stop_reason = "time-step-collapse";
+    stop_reason = StopReason::time_step_collapse;
     char buf[160];
     std::snprintf(buf, sizeof buf, "time step collapsed to %.3e s (floor %.3e s)",
                   ts.stability_coefficient * dt_stable, dt_floor);
@@ -366,21 +366,21 @@ std::optional<std::pair<RunOutcome, std::string>> Simulation::Impl::checks(
   // lag that is large against the little work put in at first, and is checked
   // at its end instead (final_energy_check).
   if (std::abs(energy.balance_error) > ts.energy_balance_limit && energy.initial_total > 0.0) {
-    stop_reason = "energy-balance";
+    stop_reason = StopReason::energy_balance;
     char buf[160];
     std::snprintf(buf, sizeof buf, "energy balance error %.3g above its limit %.3g",
                   energy.balance_error, ts.energy_balance_limit);
     return std::pair{RunOutcome::unstable, std::string(buf)};
   }
   if (options.cancel && options.cancel->load()) {
-    stop_reason = "cancelled";
+    stop_reason = StopReason::cancelled;
     return std::pair{RunOutcome::cancelled, std::string("cancelled")};
   }
   if (ts.wall_clock_limit > 0.0) {
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (wall > ts.wall_clock_limit) {
-      stop_reason = "wall-clock-limit";
+      stop_reason = StopReason::wall_clock_limit;
       char buf[160];
       std::snprintf(buf, sizeof buf, "wall-clock limit of %.1f s reached at t = %.3e s",
                     ts.wall_clock_limit, time);
@@ -388,7 +388,7 @@ std::optional<std::pair<RunOutcome, std::string>> Simulation::Impl::checks(
     }
   }
   if (step >= ts.max_steps) {
-    stop_reason = "step-limit";
+    stop_reason = StopReason::step_limit;
     return std::pair{RunOutcome::timed_out,
                      "step limit of " + std::to_string(ts.max_steps) + " reached"};
   }
@@ -454,14 +454,14 @@ RunSummary Simulation::run() {
       if (!stopped && s.impact) {
         s.verdict = s.impact->observe(s.time, s.model);
         if (s.verdict && s.scene.impact->adaptive_end) {
-          summary.stop_reason = "verdict-settled";
+          summary.stop_reason = StopReason::verdict_settled;
           stopped = true;
         }
       }
       const bool at_end = s.time >= end_time * (1.0 - 1e-12);
       if (at_end && !stopped) {
         summary.outcome = RunOutcome::finished;
-        summary.stop_reason = "end-time";
+        summary.stop_reason = StopReason::end_time;
         summary.reason = "reached the end time";
         stopped = true;
       }
@@ -487,7 +487,7 @@ RunSummary Simulation::run() {
       }
       s.file->set_attribute("outcome", to_string(summary.outcome));
       s.file->set_attribute("reason", summary.reason);
-      s.file->set_attribute("stop_reason", summary.stop_reason);
+      s.file->set_attribute("stop_reason", name_or_empty(summary.stop_reason));
       s.file->set_attribute("steps", summary.steps);
       s.file->set_attribute("end_time", summary.end_time, "s");
       s.file->close();
@@ -496,7 +496,7 @@ RunSummary Simulation::run() {
     s.fill_summary(summary);
     if (s.impact) s.impact->finish(summary, s.model, std::nullopt);
     summary.outcome = RunOutcome::error;
-    summary.stop_reason = "error";
+    summary.stop_reason = StopReason::error;
     summary.reason = e.what();
   }
   summary.wall_seconds =
@@ -509,12 +509,13 @@ RunSummary Simulation::run() {
 // Catches the runs the per-step check leaves out (driven from rest). Returns
 // false when the check failed.
 bool Simulation::Impl::final_energy_check(RunSummary& s) const {
-  const bool own_end = s.stop_reason == "end-time" || s.stop_reason == "verdict-settled";
+  const bool own_end =
+      s.stop_reason == StopReason::end_time || s.stop_reason == StopReason::verdict_settled;
   const bool energy_given = energy.initial_total + std::max(energy.external_work, 0.0) > 0.0;
   const double limit = scene.time.energy_balance_limit;
   if (!own_end || !energy_given || !(std::abs(energy.balance_error) > limit)) return true;
   s.outcome = RunOutcome::unstable;
-  s.stop_reason = "energy-balance";
+  s.stop_reason = StopReason::energy_balance;
   char buf[200];
   std::snprintf(buf, sizeof buf, "energy balance error %.3g above its limit %.3g at the end",
                 energy.balance_error, limit);

@@ -72,7 +72,7 @@ struct Simulation::Impl {
   void absorbing_damping();
   void compute_energies();
   std::optional<std::pair<RunOutcome, std::string>> checks(
-      const std::chrono::steady_clock::time_point& start, std::string& stop_reason);
+      const std::chrono::steady_clock::time_point& start, std::optional<StopReason>& stop_reason);
   void open_output();
   void write_history();
   void write_snapshot(bool final_state = false);

@@ -25,14 +25,14 @@ bool Simulation::Impl::sph_internal_forces_all(RunSummary& s) {
     max_return_iterations = std::max(max_return_iterations, r.max_return_iterations);
     if (r.return_failed) {
       s.outcome = RunOutcome::unstable;
-      s.stop_reason = "return-mapping";
+      s.stop_reason = StopReason::return_mapping;
       s.reason =
           "the return mapping of the strength law did not converge in body '" + body.name + "'";
       return false;
     }
     if (r.inverted > 0) {
       s.outcome = RunOutcome::unstable;
-      s.stop_reason = "particle-inverted";
+      s.stop_reason = StopReason::particle_inverted;
       s.reason =
           std::to_string(r.inverted) + " particle(s) of body '" + body.name + "' have det F <= 0";
       return false;

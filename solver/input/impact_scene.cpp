@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,13 @@ json vec(double x, double y, double z) {
   return json::array({x, y, z});
 }
 
+// The SPH model `auto` chooses: the ball on an SPH or an FE block, a quarter
+// of each for a normal impact, the whole of each for an oblique one.
+Fidelity sph_fidelity(bool sph_substrate, bool oblique) {
+  if (sph_substrate) return oblique ? Fidelity::sph_3d_full : Fidelity::sph_3d_quarter;
+  return oblique ? Fidelity::sph_on_fe_3d_full : Fidelity::sph_on_fe_3d_quarter;
+}
+
 }  // namespace
 
 ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::path& base_dir) {
@@ -134,7 +142,11 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
   std::vector<std::string> reasons;
 
   // Fidelity.
-  if (fidelity == "auto") {
+  const std::optional<Fidelity> asked = parse<Fidelity>(fidelity);
+  if (!asked && fidelity != "auto") {
+    fail(base + "/fidelity", "unknown fidelity " + fidelity);
+  }
+  if (!asked) {
     const bool sph_asked = particle_disc == "sph";
     const bool too_fast = particle_disc == "auto" && v > k_fe_max_velocity;
     if (sph_asked || too_fast) {
@@ -144,8 +156,7 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
       const bool sph_substrate =
           substrate_disc == "sph" ||
           (substrate_disc == "auto" && initial_yield_stress(ms.strength) < sigma_p);
-      const std::string sym = angle != 0.0 ? "full" : "quarter";
-      c.model = (sph_substrate ? "sph-3d-" : "sph-on-fe-3d-") + sym;
+      c.model = sph_fidelity(sph_substrate, angle != 0.0);
       reasons.push_back(sph_asked ? std::string("SPH particle as asked")
                                   : "SPH particle: impact velocity " + std::to_string(v) +
                                         " m/s is above " + std::to_string(k_fe_max_velocity) +
@@ -162,40 +173,39 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
       reasons.push_back(angle != 0.0 ? "oblique impact: full 3D"
                                      : "normal impact: quarter model, two symmetry planes");
     } else if (angle != 0.0) {
-      c.model = "fe-3d-full";
+      c.model = Fidelity::fe_3d_full;
       reasons.push_back("oblique impact (angle " + std::to_string(angle) +
                         " deg): only a full 3D model represents it");
     } else {
-      c.model = "fe-axisym";
+      c.model = Fidelity::fe_axisym;
       reasons.push_back("normal impact: axisymmetric");
     }
   } else {
-    c.model = fidelity;
+    c.model = *asked;
     reasons.push_back("fidelity " + fidelity + " as asked");
-    const bool full =
-        fidelity == "fe-3d-full" || fidelity == "sph-3d-full" || fidelity == "sph-on-fe-3d-full";
-    if (angle != 0.0 && !full) {
+    if (angle != 0.0 && !is_full_3d(c.model)) {
       fail(base + "/fidelity",
            "an oblique impact (angle != 0) needs a full 3D fidelity (fe-3d-full, sph-3d-full, "
            "sph-on-fe-3d-full) or auto, not " +
                fidelity);
     }
   }
-  const bool sph = c.model.rfind("sph-", 0) == 0;
-  const bool sph_substrate = c.model.rfind("sph-3d-", 0) == 0;
+  const std::string model_name(to_string(c.model));
+  const bool sph = has_sph_particle(c.model);
+  const bool sph_substrate = has_sph_substrate(c.model);
   if (sph && particle_disc == "fe") {
     fail(base + "/particle/discretization",
-         "is fe, but fidelity " + c.model + " has an SPH particle");
+         "is fe, but fidelity " + model_name + " has an SPH particle");
   }
   if (!sph && particle_disc == "sph") {
     fail(base + "/particle/discretization",
-         "is sph, but fidelity " + c.model +
+         "is sph, but fidelity " + model_name +
              " has no SPH particle (use sph-3d-* or sph-on-fe-3d-*)");
   }
   if (sph && substrate_disc != "auto" && (substrate_disc == "sph") != sph_substrate) {
-    fail(base + "/substrate/discretization", "is " + substrate_disc + ", but fidelity " + c.model +
-                                                 " has " + (sph_substrate ? "an SPH" : "an FE") +
-                                                 " substrate");
+    fail(base + "/substrate/discretization",
+         "is " + substrate_disc + ", but fidelity " + model_name + " has " +
+             (sph_substrate ? "an SPH" : "an FE") + " substrate");
   }
   if (!sph && substrate_disc == "sph") {
     fail(base + "/substrate/discretization", "sph needs an SPH fidelity (sph-3d-* or auto)");
@@ -245,7 +255,7 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
   if (substrate_kind == "rigid") {
     c.rigid_substrate = true;
     reasons.push_back("rigid substrate as asked");
-  } else if (substrate_kind == "auto" && !has_adhesion && c.model != "two-mass" &&
+  } else if (substrate_kind == "auto" && !has_adhesion && c.model != Fidelity::two_mass &&
              initial_yield_stress(ms.strength) >= k_rigid_factor * sigma_p) {
     c.rigid_substrate = true;
     reasons.push_back("rigid substrate: its yield stress " +
@@ -287,7 +297,7 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
   }
   scene["time"] = time;
 
-  if (c.model == "two-mass") {
+  if (c.model == Fidelity::two_mass) {
     // The crudest level: the particle as a rigid mass, the substrate as the
     // rigid mass of a hemisphere of the particle's radius, joined over the
     // Hertz contact area at v (a = sqrt(R delta_max)).
@@ -307,7 +317,7 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
                       " kg, link area from the Hertz contact radius");
     c.why = reasons.front();
     for (std::size_t i = 1; i < reasons.size(); ++i) c.why += "; " + reasons[i];
-    scene["particle_impact"]["model"] = {{"name", c.model}, {"why", c.why}};
+    scene["particle_impact"]["model"] = {{"name", model_name}, {"why", c.why}};
     out.scene = std::move(scene);
     return out;
   }
@@ -323,8 +333,8 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
     output["snapshot_times"] = std::move(times);
   }
 
-  const bool axi = c.model == "fe-axisym";
-  const bool quarter = c.model.size() >= 7 && c.model.substr(c.model.size() - 7) == "quarter";
+  const bool axi = is_axisymmetric(c.model);
+  const bool quarter = is_quarter(c.model);
   const double rad = angle * k_pi / 180.0;
   // SPH substrate block: a whole number of spacings, so the cubic lattice
   // keeps the spacing h exactly.
@@ -432,7 +442,7 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
   c.why = reasons.front();
   for (std::size_t i = 1; i < reasons.size(); ++i) c.why += "; " + reasons[i];
   scene["particle_impact"]["model"] = {
-      {"name", c.model}, {"rigid_substrate", c.rigid_substrate}, {"why", c.why}};
+      {"name", model_name}, {"rigid_substrate", c.rigid_substrate}, {"why", c.why}};
   out.scene = std::move(scene);
   return out;
 }

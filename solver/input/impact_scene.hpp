@@ -55,11 +55,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "solver/scene/fidelity.hpp"
+
 namespace splat {
 
 struct ImpactModelChoice {
-  std::string model;  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full, sph-3d-quarter,
-                      // sph-3d-full, sph-on-fe-3d-quarter, sph-on-fe-3d-full
+  Fidelity model = Fidelity::fe_axisym;  // the model chosen, asked or auto
   bool rigid_substrate = false;
   std::string why;  // for people: what was chosen and the reason
 };

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <utility>
 
+#include "solver/common/enum_names.hpp"
 #include "solver/input/adhesion_io.hpp"
 #include "solver/input/impact_scene.hpp"
 #include "solver/input/material_io.hpp"
@@ -61,59 +62,65 @@ const json& member_or_empty(const json& j, const char* key) {
 }
 
 // Enumerations and their JSON spellings; the schema restricts the strings.
-constexpr std::array<std::pair<GeometryType, std::string_view>, 5> geometry_names{{
+constexpr NameTable<GeometryType, 5> geometry_names{{
     {GeometryType::sphere, "sphere"},
     {GeometryType::cylinder, "cylinder"},
     {GeometryType::box, "box"},
     {GeometryType::half_disc, "half-disc"},
     {GeometryType::rectangle, "rectangle"},
 }};
-constexpr std::array<std::pair<Discretization, std::string_view>, 3> discretization_names{{
+constexpr NameTable<Discretization, 3> discretization_names{{
     {Discretization::fe_axisym, "fe-axisym"},
     {Discretization::fe_hex, "fe-hex"},
     {Discretization::sph, "sph"},
 }};
-constexpr std::array<std::pair<SectorKind, std::string_view>, 3> sector_names{{
+constexpr NameTable<SectorKind, 3> sector_names{{
     {SectorKind::full, "full"},
     {SectorKind::half, "half"},
     {SectorKind::quarter, "quarter"},
 }};
-constexpr std::array<std::pair<HourglassType, std::string_view>, 2> hourglass_names{{
+constexpr NameTable<HourglassType, 2> hourglass_names{{
     {HourglassType::viscous, "viscous"},
     {HourglassType::stiffness, "stiffness"},
 }};
-constexpr std::array<std::pair<BoundaryType, std::string_view>, 4> boundary_type_names{{
+constexpr NameTable<BoundaryType, 4> boundary_type_names{{
     {BoundaryType::fixed, "fixed"},
     {BoundaryType::symmetry, "symmetry"},
     {BoundaryType::velocity, "velocity"},
     {BoundaryType::absorbing, "absorbing"},
 }};
-constexpr std::array<std::pair<InteractionType, std::string_view>, 2> interaction_names{{
+constexpr NameTable<InteractionType, 2> interaction_names{{
     {InteractionType::rigid_wall, "rigid-wall"},
     {InteractionType::contact, "contact"},
 }};
-constexpr std::array<std::pair<ContactMethod, std::string_view>, 2> contact_method_names{{
+constexpr NameTable<ContactMethod, 2> contact_method_names{{
     {ContactMethod::lagrange, "lagrange"},
     {ContactMethod::penalty, "penalty"},
 }};
-constexpr std::array<std::pair<ContactSolverKind, std::string_view>, 2> contact_solver_names{{
+constexpr NameTable<ContactSolverKind, 2> contact_solver_names{{
     {ContactSolverKind::pgs, "pgs"},
     {ContactSolverKind::active_set, "active-set"},
 }};
 
+// Each table lists its enum's values in declaration order.
+static_assert(names_in_order(geometry_names));
+static_assert(names_in_order(discretization_names));
+static_assert(names_in_order(sector_names));
+static_assert(names_in_order(hourglass_names));
+static_assert(names_in_order(boundary_type_names));
+static_assert(names_in_order(interaction_names));
+static_assert(names_in_order(contact_method_names));
+static_assert(names_in_order(contact_solver_names));
+
 template <class E, std::size_t N>
-E from_name(const std::array<std::pair<E, std::string_view>, N>& table, const std::string& s) {
-  for (const auto& [value, name] : table) {
-    if (name == s) return value;
-  }
+E from_name(const NameTable<E, N>& table, const std::string& s) {
+  if (const std::optional<E> value = value_in(table, s)) return *value;
   throw std::logic_error("scene_io: '" + s + "' passed the schema but has no enum value");
 }
 
 template <class E, std::size_t N>
-std::string name_of(const std::array<std::pair<E, std::string_view>, N>& table, E e) {
-  for (const auto& [value, name] : table) {
-    if (value == e) return std::string(name);
-  }
+std::string name_of(const NameTable<E, N>& table, E e) {
+  if (const std::optional<std::string_view> name = name_in(table, e)) return std::string(*name);
   throw std::logic_error("scene_io: enum value without a name");
 }
 
@@ -845,7 +852,8 @@ void apply_override(json& doc, const std::string& text) {
 }
 
 // The impact run's view of an expanded particle_impact block (it carries the
-// model the expansion chose under "model").
+// model the expansion chose under "model"). Throws InputError for a model
+// name that is no fidelity.
 ImpactSpec impact_spec(const json& block) {
   ImpactSpec impact;
   const json model = block.value("model", json::object());
@@ -854,7 +862,13 @@ ImpactSpec impact_spec(const json& block) {
   impact.angle = block.value("angle", 0.0);
   impact.adaptive_end = !block.value("end_time", json("adaptive")).is_number();
   impact.max_eroded_fraction = block.value("max_eroded_fraction", impact.max_eroded_fraction);
-  impact.model = model.value("name", "");
+  if (const auto name = model.find("name"); name != model.end()) {
+    impact.model = parse<Fidelity>(name->get<std::string>());
+    if (!impact.model) {
+      throw InputError({{"/particle_impact/model/name",
+                         "unknown model " + name->dump() + " (a fidelity other than auto)"}});
+    }
+  }
   impact.why = model.value("why", "");
   return impact;
 }

@@ -13,6 +13,7 @@
 #include "solver/common/types.hpp"
 #include "solver/contact/contact_types.hpp"
 #include "solver/material/material.hpp"
+#include "solver/scene/fidelity.hpp"
 #include "solver/sph/sph_body.hpp"
 #include "solver/sph/sph_particles.hpp"
 
@@ -146,7 +147,7 @@ struct ImpactSpec {
   double angle = 0.0;                 // from the substrate normal, deg
   bool adaptive_end = true;           // stop once the outcome is decided
   double max_eroded_fraction = 0.5;   // particle mass share erosion may take with a verdict, -
-  std::string model;                  // two-mass, fe-axisym, fe-3d-quarter, fe-3d-full
+  std::optional<Fidelity> model;      // none: a block whose model names none
   std::string why;                    // why that model, for people
 };
 

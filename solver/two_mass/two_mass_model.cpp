@@ -140,7 +140,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
     const double gap = x - X;
     if (!std::isfinite(X + x + V + v + W)) {
       run.outcome = RunOutcome::unstable;
-      run.stop_reason = "non-finite";
+      run.stop_reason = StopReason::non_finite;
       run.reason = "a position or velocity became non-finite at t = " + seconds_text(t);
       break;
     }
@@ -154,7 +154,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
       }
       if (apart) {
         run.outcome = RunOutcome::rebound;
-        run.stop_reason = "separated";
+        run.stop_reason = StopReason::separated;
         run.reason = "the link let go at t = " + seconds_text(*fig.release_time) +
                      " and the masses can no longer meet";
         decided = true;
@@ -168,7 +168,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
       const double convertible = row.kinetic + row.spring;
       if (s.k > 0.0 && fig.work_budget - W > convertible * (1.0 + 1e-6)) {
         run.outcome = RunOutcome::stick;
-        run.stop_reason = "budget-exceeds-energy";
+        run.stop_reason = StopReason::budget_exceeds_energy;
         run.reason =
             "the link's remaining adhesion budget exceeds the mechanical energy left: it "
             "can never let go";
@@ -190,7 +190,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
         }
         if (settled && !decided) {
           run.outcome = RunOutcome::stick;
-          run.stop_reason = "settled";
+          run.stop_reason = StopReason::settled;
           run.reason =
               "the link holds the masses together and can carry every tension the "
               "remaining motion needs";
@@ -201,7 +201,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
     if (decided) break;
     if (E0 > 0.0 && std::abs(row.balance_error) > time.energy_balance_limit) {
       run.outcome = RunOutcome::unstable;
-      run.stop_reason = "energy-balance";
+      run.stop_reason = StopReason::energy_balance;
       run.reason = "energy balance error above its limit at t = " + seconds_text(t) +
                    " (time step too large?)";
       break;
@@ -209,7 +209,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
     if (t >= time.end_time * (1.0 - 1e-12)) {
       const bool broken = link == LinkState::exhausted || link == LinkState::eroded;
       run.outcome = broken ? RunOutcome::rebound : RunOutcome::stick;
-      run.stop_reason = "end-time";
+      run.stop_reason = StopReason::end_time;
       const double K_rel = 0.5 * g_dot * g_dot / h;  // relative kinetic energy, J
       const double W_rem = fig.work_budget - W;
       if (broken) {
@@ -221,7 +221,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
         const double g_final = std::sqrt(g_dot * g_dot - 2.0 * h * W_rem);
         const double u = (s.M * V + s.m * v) / (s.M + s.m);
         run.outcome = RunOutcome::rebound;
-        run.stop_reason = "end-time-predicted";
+        run.stop_reason = StopReason::end_time_predicted;
         fig.separation_velocity = -(u - s.m / (s.M + s.m) * g_final);
         run.reason =
             "reached the end time before the link let go; with k = 0 it will (relative "
@@ -239,7 +239,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
     }
     if (run.steps >= time.max_steps) {
       run.outcome = RunOutcome::timed_out;
-      run.stop_reason = "step-limit";
+      run.stop_reason = StopReason::step_limit;
       run.reason = "step limit of " + std::to_string(time.max_steps) +
                    " steps reached at t = " + seconds_text(t) +
                    " with dt = " + seconds_text(dt_fixed) +
@@ -249,7 +249,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
     if ((run.steps & 4095) == 0) {
       if (cancel != nullptr && cancel->load()) {
         run.outcome = RunOutcome::cancelled;
-        run.stop_reason = "cancelled";
+        run.stop_reason = StopReason::cancelled;
         run.reason = "cancelled at t = " + seconds_text(t);
         break;
       }
@@ -257,7 +257,7 @@ TwoMassRun integrate_two_mass(const TwoMassSpec& s, const TimeSpec& time,
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (time.wall_clock_limit > 0.0 && wall > time.wall_clock_limit) {
         run.outcome = RunOutcome::timed_out;
-        run.stop_reason = "wall-clock-limit";
+        run.stop_reason = StopReason::wall_clock_limit;
         run.reason = "wall-clock limit reached at t = " + seconds_text(t);
         break;
       }
@@ -347,7 +347,7 @@ RunSummary run_two_mass(const Scene& scene, const nlohmann::json& resolved,
     if (file) {
       file->set_attribute("outcome", to_string(summary.outcome));
       file->set_attribute("reason", summary.reason);
-      file->set_attribute("stop_reason", summary.stop_reason);
+      file->set_attribute("stop_reason", name_or_empty(summary.stop_reason));
       file->set_attribute("steps", summary.steps);
       file->set_attribute("end_time", summary.end_time, "s");
       file->set_attribute("link_work", run.figures.link_work, "J");
@@ -360,7 +360,7 @@ RunSummary run_two_mass(const Scene& scene, const nlohmann::json& resolved,
     }
   } catch (const std::exception& e) {
     summary.outcome = RunOutcome::error;
-    summary.stop_reason = "error";
+    summary.stop_reason = StopReason::error;
     summary.reason = e.what();
   }
   summary.wall_seconds =

@@ -40,6 +40,7 @@
 #include <atomic>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "solver/core/run_summary.hpp"
@@ -66,7 +67,7 @@ struct TwoMassRow {
 struct TwoMassRun {
   RunOutcome outcome = RunOutcome::stick;
   std::string reason;
-  std::string stop_reason;  // settled, separated, end-time, step-limit, ...
+  std::optional<StopReason> stop_reason;  // set when the run stops
   long long steps = 0;
   double time = 0.0;  // s
   EnergyBudget energy;

@@ -62,7 +62,8 @@ std::vector<Point> sweep(const std::string& scene) {
     }
     std::printf(
         "  %6.0f m/s  %-9s links activated %3lld eroded %3lld  bonded area %.3e m^2  (%s)\n", v,
-        p.outcome.c_str(), p.activated, p.eroded, p.bonded_area, s.stop_reason.c_str());
+        p.outcome.c_str(), p.activated, p.eroded, p.bonded_area,
+        name_or_empty(s.stop_reason).c_str());
     out.push_back(p);
   }
   return out;

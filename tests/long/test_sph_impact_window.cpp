@@ -70,7 +70,7 @@ Point run(const std::string& scene, double v, int across, const std::vector<std:
   p.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   p.velocity = v;
   p.outcome = to_string(s.outcome);
-  p.stop_reason = s.stop_reason;
+  p.stop_reason = name_or_empty(s.stop_reason);
   p.steps = s.steps;
   EXPECT_TRUE(p.outcome == "stick" || p.outcome == "rebound" || p.outcome == "unstable")
       << scene << " " << v << ": " << p.outcome << " " << s.reason;

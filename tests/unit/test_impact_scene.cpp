@@ -43,7 +43,7 @@ std::string first_error(const json& doc) {
 
 TEST(ImpactScene, normal_impact_is_axisymmetric_with_plain_contact_and_no_damage) {
   const ExpandedImpact e = expand_particle_impact(impact(al_on_al(600.0)));
-  EXPECT_EQ(e.choice.model, "fe-axisym");
+  EXPECT_EQ(e.choice.model, Fidelity::fe_axisym);
   EXPECT_FALSE(e.choice.rigid_substrate);
   EXPECT_NE(e.choice.why.find("normal impact"), std::string::npos) << e.choice.why;
   EXPECT_NE(e.choice.why.find("no adhesion"), std::string::npos) << e.choice.why;
@@ -83,7 +83,7 @@ TEST(ImpactScene, oblique_impact_needs_full_3d) {
   json b = al_on_al(600.0);
   b["angle"] = 30.0;
   const ExpandedImpact e = expand_particle_impact(impact(b));
-  EXPECT_EQ(e.choice.model, "fe-3d-full");
+  EXPECT_EQ(e.choice.model, Fidelity::fe_3d_full);
   const json v = e.scene["bodies"][0]["initial"]["velocity"];
   EXPECT_NEAR(v[0].get<double>(), 300.0, 1e-9);
   EXPECT_NEAR(v[2].get<double>(), -600.0 * std::sqrt(3.0) / 2.0, 1e-9);
@@ -149,7 +149,7 @@ TEST(ImpactScene, two_mass_fidelity_runs_as_a_two_mass_scene) {
   const LoadedScene loaded = read_scene(impact(b));
   ASSERT_TRUE(loaded.scene.two_mass.has_value());
   ASSERT_TRUE(loaded.scene.impact.has_value());
-  EXPECT_EQ(loaded.scene.impact->model, "two-mass");
+  EXPECT_EQ(loaded.scene.impact->model, Fidelity::two_mass);
   const double M = 4.0 / 3.0 * 3.141592653589793 * std::pow(12.5e-6, 3) * 2700.0;
   EXPECT_NEAR(loaded.scene.two_mass->M / M, 1.0, 0.01);
   EXPECT_EQ(loaded.resolved["particle_impact"]["model"]["name"], "two-mass");
@@ -190,6 +190,18 @@ TEST(ImpactScene, expanded_scene_with_disagreeing_velocities_is_refused) {
     if (body["name"] == "particle") body["initial"]["velocity"] = {0.0, 0.0, -5.0};
   }
   EXPECT_EQ(first_error(changed), "");
+}
+
+// The model an expanded scene names is read back as its fidelity; a name
+// that is no fidelity is refused, naming the field.
+TEST(ImpactScene, expanded_scene_reads_its_model_back) {
+  nlohmann::json expanded = read_scene(impact(al_on_al(550.0))).resolved;
+  EXPECT_EQ(read_scene(expanded).scene.impact->model, Fidelity::fe_axisym);
+  expanded["particle_impact"]["model"].erase("name");
+  EXPECT_FALSE(read_scene(expanded).scene.impact->model.has_value());
+  expanded["particle_impact"]["model"]["name"] = "fe-3d";
+  const std::string error = first_error(expanded);
+  EXPECT_EQ(error.rfind("/particle_impact/model/name", 0), 0u) << error;
 }
 
 }  // namespace

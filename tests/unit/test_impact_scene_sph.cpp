@@ -46,7 +46,7 @@ int count_bcs(const json& scene, const std::string& body, const std::string& typ
 
 TEST(ImpactSceneSph, sph_particle_on_al_picks_the_quarter_sph_on_sph_model) {
   const ExpandedImpact e = expand_particle_impact(impact(al_on_al(600.0, "sph")));
-  EXPECT_EQ(e.choice.model, "sph-3d-quarter");
+  EXPECT_EQ(e.choice.model, Fidelity::sph_3d_quarter);
   EXPECT_NE(e.choice.why.find("SPH particle as asked"), std::string::npos) << e.choice.why;
   EXPECT_NE(e.choice.why.find("SPH substrate"), std::string::npos) << e.choice.why;
   const json& s = e.scene;
@@ -72,22 +72,23 @@ TEST(ImpactSceneSph, sph_particle_on_al_picks_the_quarter_sph_on_sph_model) {
   EXPECT_FALSE(s["interactions"][0].value("two_pass", false));
   for (const SchemaViolation& v : validate("scene", s)) ADD_FAILURE() << to_string(v);
   const LoadedScene loaded = read_scene(impact(al_on_al(600.0, "sph")));
-  EXPECT_EQ(loaded.scene.impact->model, "sph-3d-quarter");
+  EXPECT_EQ(loaded.scene.impact->model, Fidelity::sph_3d_quarter);
 }
 
 TEST(ImpactSceneSph, auto_switches_to_sph_above_the_fe_erosion_velocity_and_says_why) {
-  EXPECT_EQ(expand_particle_impact(impact(al_on_al(500.0, ""))).choice.model, "fe-axisym");
+  EXPECT_EQ(expand_particle_impact(impact(al_on_al(500.0, ""))).choice.model, Fidelity::fe_axisym);
   const ExpandedImpact fast = expand_particle_impact(impact(al_on_al(501.0, "")));
-  EXPECT_EQ(fast.choice.model, "sph-3d-quarter");
+  EXPECT_EQ(fast.choice.model, Fidelity::sph_3d_quarter);
   EXPECT_NE(fast.choice.why.find("above which the FE particle's jetting rim erodes"),
             std::string::npos)
       << fast.choice.why;
   // An explicit FE particle stays FE at any speed.
-  EXPECT_EQ(expand_particle_impact(impact(al_on_al(3000.0, "fe"))).choice.model, "fe-axisym");
+  EXPECT_EQ(expand_particle_impact(impact(al_on_al(3000.0, "fe"))).choice.model,
+            Fidelity::fe_axisym);
   // Oblique: full 3D.
   json b = al_on_al(800.0, "");
   b["angle"] = 20.0;
-  EXPECT_EQ(expand_particle_impact(impact(b)).choice.model, "sph-3d-full");
+  EXPECT_EQ(expand_particle_impact(impact(b)).choice.model, Fidelity::sph_3d_full);
 }
 
 TEST(ImpactSceneSph, harder_substrate_gets_an_fe_block_under_the_sph_ball) {
@@ -95,14 +96,14 @@ TEST(ImpactSceneSph, harder_substrate_gets_an_fe_block_under_the_sph_ball) {
   b["substrate"] = {{"material", "ti6al4v-thesis"}};
   b["adhesion"] = {{"G_c", 1.0}};  // keeps the substrate deformable
   const ExpandedImpact e = expand_particle_impact(impact(b));
-  EXPECT_EQ(e.choice.model, "sph-on-fe-3d-quarter");
+  EXPECT_EQ(e.choice.model, Fidelity::sph_on_fe_3d_quarter);
   const json& block = e.scene["bodies"][1];
   EXPECT_EQ(block["discretization"]["type"], "fe-hex");
   EXPECT_NEAR(block["discretization"]["element_size"].get<double>(), R / 5, 1e-15);
   EXPECT_EQ(count_bcs(e.scene, "substrate", "symmetry"), 2);
   for (const SchemaViolation& v : validate("scene", e.scene)) ADD_FAILURE() << to_string(v);
   b["substrate"]["discretization"] = "sph";
-  EXPECT_EQ(expand_particle_impact(impact(b)).choice.model, "sph-3d-quarter");
+  EXPECT_EQ(expand_particle_impact(impact(b)).choice.model, Fidelity::sph_3d_quarter);
 }
 
 TEST(ImpactSceneSph, every_sph_level_expands_to_a_valid_scene) {
@@ -112,7 +113,7 @@ TEST(ImpactSceneSph, every_sph_level_expands_to_a_valid_scene) {
     b["fidelity"] = level;
     b["adhesion"] = {{"G_c", 30.0}};
     const ExpandedImpact e = expand_particle_impact(impact(b));
-    EXPECT_EQ(e.choice.model, level);
+    EXPECT_EQ(to_string(e.choice.model), level);
     const bool quarter = std::string(level).find("quarter") != std::string::npos;
     const bool sph_block = std::string(level).rfind("sph-3d", 0) == 0;
     EXPECT_EQ(e.scene["bodies"][0]["discretization"]["type"], "sph") << level;

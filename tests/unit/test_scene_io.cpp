@@ -662,7 +662,7 @@ TEST(SceneIo, run_summary_satisfies_the_result_schema) {
   RunSummary summary;
   summary.scene = "cu-particle-on-wall";
   summary.outcome = RunOutcome::timed_out;
-  summary.stop_reason = "max-steps";
+  summary.stop_reason = StopReason::step_limit;
   summary.bodies.push_back({});
   summary.bodies[0].name = "particle";
   json doc = to_json(summary);

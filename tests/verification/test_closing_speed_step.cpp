@@ -36,10 +36,10 @@ RunSummary taylor_3000(long long steps) {
 
 TEST(closing_speed_time_step, taylor_bar_at_3000_m_s_keeps_its_energy_in_the_arresting_steps) {
   const RunSummary first = taylor_3000(1);
-  EXPECT_EQ(first.stop_reason, "step-limit") << first.reason;
+  EXPECT_EQ(first.stop_reason, StopReason::step_limit) << first.reason;
   EXPECT_LT(std::abs(first.energy.balance_error), 0.02) << first.energy.balance_error;
   const RunSummary later = taylor_3000(20);
-  EXPECT_EQ(later.stop_reason, "step-limit") << later.reason;
+  EXPECT_EQ(later.stop_reason, StopReason::step_limit) << later.reason;
   EXPECT_LT(std::abs(later.energy.balance_error), 0.03) << later.energy.balance_error;
 }
 

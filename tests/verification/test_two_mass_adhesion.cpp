@@ -95,7 +95,7 @@ TEST(two_mass_adhesion, free_mass_sticks_below_the_threshold_speed) {
     ASSERT_FALSE(ref.rebound);
     const TwoMassRun r = run(c, 1e-3);
     EXPECT_EQ(r.outcome, RunOutcome::stick) << r.reason;
-    EXPECT_EQ(r.stop_reason, "settled");
+    EXPECT_EQ(r.stop_reason, StopReason::settled);
     EXPECT_FALSE(r.figures.separation_velocity.has_value());
     EXPECT_NEAR(r.figures.final_velocity_M, ref.V_final, 1e-12);
     EXPECT_NEAR(r.figures.final_velocity_m, ref.v_final, 1e-12);
@@ -224,7 +224,8 @@ TEST(two_mass_adhesion, other_regimes_match_the_event_driven_solution) {
         " solver %s V_M %.6f, final %.6f / %.6f (%s)\n",
         g.M, g.m, g.k, g.V0, g.budget, g.F, ref.rebound ? "rebound" : "stick", ref.V_release,
         ref.release_time, ref.V_final, ref.v_final, to_string(r.outcome), V_release(r),
-        r.figures.final_velocity_M, r.figures.final_velocity_m, r.stop_reason.c_str());
+        r.figures.final_velocity_M, r.figures.final_velocity_m,
+        name_or_empty(r.stop_reason).c_str());
     EXPECT_EQ(r.outcome == RunOutcome::rebound, ref.rebound);
     if (ref.rebound) {
       EXPECT_NEAR(V_release(r), ref.V_release, 1e-3 * g.V0);
