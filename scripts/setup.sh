@@ -12,7 +12,7 @@ packages=(build-essential cmake git pkg-config ca-certificates
   libeigen3-dev libsqlite3-dev libcpp-httplib-dev nlohmann-json3-dev
   libhdf5-dev hdf5-tools libgtest-dev libgmock-dev libbenchmark-dev
   libvalijson-dev libcli11-dev
-  python3-h5py python3-numpy python3-meshio)
+  python3-h5py python3-numpy python3-meshio python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
