@@ -144,6 +144,17 @@ TEST(campaign_sweep, sweep_and_windows_commands) {
       << o.stdout_text;
 }
 
+// scenes/impact_al_al.json with the thesis's aluminium (al-thesis: links
+// activate from about 300 m/s at 8 to 12 elements across), written to `dir`:
+// a window low enough in speed for short jobs.
+fs::path al_thesis_scene(const fs::path& dir) {
+  json scene = json::parse(std::ifstream(k_source / "scenes/impact_al_al.json"));
+  scene["particle_impact"]["particle"]["material"] = "al-thesis";
+  const fs::path path = dir / "impact_al_al_thesis_material.json";
+  std::ofstream(path) << scene.dump(2);
+  return path;
+}
+
 // A campaign over the particle_impact example (scenes/impact_al_al.json):
 // the axes default to the impact block's fields and the jobs are classified
 // by the same stick / rebound outcome as two-mass jobs, so the window has a
@@ -153,7 +164,7 @@ TEST(campaign_sweep, impact_jobs_classify_like_two_mass_jobs) {
   TempDir t;
   const fs::path spec = t.path / "impact.json";
   std::ofstream(spec) << json{{"name", "impact"},
-                              {"base_scene", (k_source / "scenes/impact_al_al.json").string()},
+                              {"base_scene", al_thesis_scene(t.path).string()},
                               {"velocity", {{"values", {200, 500}}}},
                               {"G_c", {{"values", {30}}}},
                               {"job", {{"time_limit", 120}}}}
@@ -181,7 +192,7 @@ TEST(campaign_sweep, a_resolution_field_gives_a_ladder) {
   const json field = {
       {"pointer", "/particle_impact/particle/elements_across"}, {"unit", "-"}, {"values", {8, 12}}};
   std::ofstream(spec) << json{{"name", "ladder"},
-                              {"base_scene", (k_source / "scenes/impact_al_al.json").string()},
+                              {"base_scene", al_thesis_scene(t.path).string()},
                               {"velocity", {{"values", {200, 500}}}},
                               {"fields", {field}},
                               {"job", {{"time_limit", 120}}}}
@@ -221,7 +232,7 @@ TEST(campaign_sweep, coarse_to_fine_runs_the_finer_level_near_the_edges) {
       {"pointer", "/particle_impact/particle/elements_across"}, {"unit", "-"}, {"values", {8, 12}}};
   std::ofstream(spec) << json{
       {"name", "c2f"},
-      {"base_scene", (k_source / "scenes/impact_al_al.json").string()},
+      {"base_scene", al_thesis_scene(t.path).string()},
       {"velocity", {{"range", {{"from", 100}, {"to", 700}, {"step", 100}}}}},
       {"fields", {field}},
       {"refinement", {{"tolerance", 25}, {"coarse_to_fine", true}}},

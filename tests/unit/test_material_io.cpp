@@ -302,12 +302,13 @@ TEST(material_lookup, unknown_name_lists_the_library) {
     load_material("unobtainium");
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.violations(),
-              (Violations{{"",
-                           "unknown material 'unobtainium' (known: al-deck, al-thesis, "
-                           "al6061-t6-jc, cu-deck, cu-ofhc-jc, cu-ofhc-ptw, cu-thesis, "
-                           "steel-hopkinson, ti6al4v-jc, ti6al4v-thesis; or give a path "
-                           "to a JSON file)"}}));
+    EXPECT_EQ(
+        e.violations(),
+        (Violations{{"",
+                     "unknown material 'unobtainium' (known: al-deck, al-thesis, "
+                     "al-thesis-gf, al6061-t6-jc, cu-deck, cu-ofhc-jc, cu-ofhc-ptw, cu-thesis, "
+                     "steel-hopkinson, ti6al4v-jc, ti6al4v-thesis; or give a path "
+                     "to a JSON file)"}}));
   }
 }
 

@@ -90,11 +90,12 @@ TEST(impact_extremes, fastest_impact_ends_with_a_stated_outcome) {
   EXPECT_LT(s["steps"].get<long long>(), 100000) << s["reason"];
 }
 
+// At 900 m/s, where the scene's links activate (above its critical velocity).
 TEST(impact_extremes, adhesion_energy_zero_and_very_large) {
-  const json none = run({"/particle_impact/adhesion/G_c=0"});
+  const json none = run({"/particle_impact/velocity=900", "/particle_impact/adhesion/G_c=0"});
   EXPECT_NE(none["outcome"], "stick") << none["reason"];
   // Budget a million times the thesis's: nothing can pull the particle off.
-  const json strong = run({"/particle_impact/adhesion/G_c=1e6"});
+  const json strong = run({"/particle_impact/velocity=900", "/particle_impact/adhesion/G_c=1e6"});
   EXPECT_EQ(strong["outcome"], "stick") << strong["reason"];
 }
 
