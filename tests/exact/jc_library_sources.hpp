@@ -21,7 +21,7 @@ struct JcSourceSet {
   double c_p;            // J/(kg K)
 };
 
-inline constexpr std::array<JcSourceSet, 3> jc_library_sources{{
+inline constexpr std::array<JcSourceSet, 6> jc_library_sources{{
     // Johnson & Cook (1983), OFHC copper; T_ref as the quoting record (294 K).
     {"cu-ofhc-jc",
      "Johnson & Cook 1983",
@@ -47,6 +47,34 @@ inline constexpr std::array<JcSourceSet, 3> jc_library_sources{{
      114.5e9,
      0.342,
      526.3},
+    // Johnson & Cook (1983), Nickel 200, as the Virtual-Twin-Cold-Spray
+    // registry quotes it (T_ref 298 K, T_melt 1726 K); density, E, nu and c_p
+    // from the same row.
+    {"ni200-jc",
+     "Johnson & Cook 1983, Nickel 200",
+     {163e6, 648e6, 0.33, 0.006, 1.0, 1.44, 298.0, 1726.0},
+     8890.0,
+     207e9,
+     0.31,
+     444.0},
+    // Karkalos & Markopoulos (2018), Table 2, 316L; density and c_p at 298 K
+    // of Kim (ANL-75-55, 1975); E and nu from the registry row.
+    {"ss316l-jc",
+     "Karkalos & Markopoulos 2018, Table 2",
+     {305e6, 1161e6, 0.61, 0.01, 1.0, 0.517, 298.0, 1673.0},
+     7955.0,
+     193e9,
+     0.30,
+     426.3},
+    // Zha et al. (2020), Table 5 (after Chen et al.), Inconel 718; density and
+    // c_p at 298 K of Agazhanov et al. (2019); E and nu from the registry row.
+    {"in718-jc",
+     "Zha et al. 2020, Table 5",
+     {1241e6, 622e6, 0.6522, 0.0134, 1.0, 1.3, 298.0, 1609.0},
+     8170.0,
+     205e9,
+     0.30,
+     425.0},
 }};
 
 }  // namespace splat::exact

@@ -2,7 +2,7 @@
 // (tests/exact/jc_library_sources.hpp), each as particle and substrate of
 // scenes/impact_al_al.json at 300 and 800 m/s: every run ends with a stick or
 // rebound verdict, not a numerical failure, and keeps its energy balance
-// within 5 % (the six runs take about a second on one thread;
+// within 5 % (the twelve runs take a few seconds on one thread;
 // docs/validation.md, "Material library", lists what each run gives).
 #include <gtest/gtest.h>
 
