@@ -59,6 +59,9 @@ int usable_cores() {
 
 // A failure that may pass on another attempt: queued again while retries
 // are left.
+// Attempts a job whose process could not be started gets at least.
+constexpr int k_spawn_retries = 3;
+
 JobEnd transient(const JobRecord& job, const JobOptions& opts, const std::string& what) {
   JobEnd e;
   e.retry = job.attempts <= opts.retries;
@@ -86,9 +89,14 @@ JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::files
   JobEnd e;
   const auto err_tail = [&] { return read_text(dir / "stderr.txt", 400); };
   switch (pr.end) {
-    case ProcessEnd::spawn_failed:
-      e.reason = "could not start: " + pr.error;
-      return e;
+    case ProcessEnd::spawn_failed: {
+      // The job never ran (the program being rebuilt, no process left):
+      // a fault of the host, not of the job, retried at least
+      // k_spawn_retries times whatever the job's retries.
+      JobOptions o = opts;
+      o.retries = std::max(o.retries, k_spawn_retries);
+      return transient(job, o, "could not start: " + pr.error);
+    }
     case ProcessEnd::timed_out:
       e.state = JobState::timed_out;
       e.reason = "stopped at the time limit of " + std::to_string(opts.time_limit) + " s";
