@@ -152,8 +152,20 @@ std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, doubl
 
 }  // namespace
 
+// The velocity of `candidates` nearest beyond v (above when `up`) that the
+// fine level has not run.
+std::optional<double> nearest_beyond(const SeedContext& c, const std::vector<double>& candidates,
+                                     double v, bool up) {
+  std::optional<double> best;
+  for (double x : candidates) {
+    if ((up ? x > v : x < v) && !c.run(x) && (!best || std::abs(x - v) < std::abs(*best - v)))
+      best = x;
+  }
+  return best;
+}
+
 std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::vector<Sample>& fine,
-                                double guard_band) {
+                                double guard_band, const std::vector<double>& coarser) {
   SeedContext c;
   for (const Sample& s : coarse) c.coarse.push_back(s.velocity);
   std::sort(c.coarse.begin(), c.coarse.end());
@@ -186,16 +198,17 @@ std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::ve
   // The fine level's own open edges (a stick at its outermost sample on
   // that side, inside the coarse range): the next coarse velocity beyond.
   const Window fw = compute_window(fine);
+  // None there: the nearest velocity a coarser level ran beyond it.
+  auto beyond = [&](double v, bool up) {
+    if (const auto x = next_coarse(c, v, up)) return x;
+    return nearest_beyond(c, coarser, v, up);
+  };
   if (!fw.intervals.empty()) {
     if (!fw.intervals.front().lower.closed()) {
-      if (const auto v = next_coarse(c, fw.intervals.front().lower.stick_velocity, false)) {
-        out.insert(*v);
-      }
+      if (const auto v = beyond(fw.intervals.front().lower.stick_velocity, false)) out.insert(*v);
     }
     if (!fw.intervals.back().upper.closed()) {
-      if (const auto v = next_coarse(c, fw.intervals.back().upper.stick_velocity, true)) {
-        out.insert(*v);
-      }
+      if (const auto v = beyond(fw.intervals.back().upper.stick_velocity, true)) out.insert(*v);
     }
   }
   return {out.begin(), out.end()};
@@ -205,7 +218,11 @@ LadderStep coarse_to_fine_step(const std::vector<std::vector<Sample>>& levels, d
                                double guard_band) {
   for (std::size_t i = 0; i < levels.size(); ++i) {
     if (i > 0) {
-      std::vector<double> seeds = level_seeds(levels[i - 1], levels[i], guard_band);
+      std::vector<double> coarser;
+      for (std::size_t j = 0; j < i; ++j) {
+        for (const Sample& s : levels[j]) coarser.push_back(s.velocity);
+      }
+      std::vector<double> seeds = level_seeds(levels[i - 1], levels[i], guard_band, coarser);
       if (!seeds.empty()) return {i, std::move(seeds)};
     }
     std::vector<double> points =

@@ -89,11 +89,13 @@ std::vector<Ladder> resolution_ladders(const std::vector<WindowRecord>& windows,
 //   returned (the edge moved by more than the band under refinement).
 // An open coarse edge gets the swept range's end on its side and the coarse
 // level's outermost stick there; an edge open at the fine level while coarse
-// samples lie beyond it gets the nearest of them. Empty: the fine
-// level has every edge of the coarse one bracketed (bisection, guard bands
-// and islands are then refinement_points' work on the fine window).
+// samples lie beyond it gets the nearest of them, or, with none there, the
+// nearest of `coarser` (the velocities every coarser level ran: an edge
+// that moved past the coarse level's samples under refinement). Empty: the
+// fine level has every edge of the coarse one bracketed (bisection, guard
+// bands and islands are then refinement_points' work on the fine window).
 std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::vector<Sample>& fine,
-                                double guard_band);
+                                double guard_band, const std::vector<double>& coarser = {});
 
 // What a ladder runs next: the coarsest level whose refinement is not done
 // (refinement_points of its window, or, above the coarsest, level_seeds from

@@ -163,6 +163,22 @@ std::vector<double> grid_200_to_1000() {
 
 }  // namespace
 
+// An edge that moves down past every sample of the middle level (778 ->
+// 772 -> 730 m/s, the FE Al/Al ladder of 8, 16, 32 elements across): the
+// middle level ran only near its bracket (756-781), so the finest one sticks
+// at all of those; the coarsest level's samples below (750, 725, ...) are
+// tried until it rebounds. Without them the finest edge stays open.
+TEST(campaign_ladders, an_edge_that_moves_past_the_middle_level_is_found_below_it) {
+  const std::vector<TrueWindow> truth = {{778, 1250}, {772, 1250}, {730, 1250}};
+  std::vector<double> grid;
+  for (double v = 200; v <= 1400; v += 100) grid.push_back(v);
+  const auto levels = run_ladder(truth, grid, 10.0, 20.0);
+  const Window w = compute_window(levels[2]);
+  ASSERT_FALSE(w.intervals.empty());
+  ASSERT_TRUE(w.intervals.front().lower.closed());
+  EXPECT_NEAR(*w.critical_velocity, 730.0, 10.0);
+}
+
 // Edges that move with the level (300 -> 340 -> 352 m/s lower, 820 -> 790 ->
 // 784 upper): every level brackets both to the tolerance, and the finer
 // levels run far fewer jobs than the coarse one.
