@@ -7,9 +7,14 @@ set -eu
 splat="$1"; source="$2"; work="$3"
 rm -rf "$work"; mkdir -p "$work"
 "$splat" run "$source/scenes/impact_al_al.json" --threads 1 --out "$work" > "$work/run.txt"
-out=$(xvfb-run -a -s "-screen 0 1280x1024x24" pvpython \
-  "$source/scripts/paraview/render_impact.py" "$work/impact_al_al.xmf" --out "$work/impact.png" \
-  2> "$work/pvpython.txt")
+# Two attempts: on a loaded machine the X server of xvfb-run -a is not
+# always up in time for pvpython (a fault of the harness, not of the script).
+render() {
+  xvfb-run -a -s "-screen 0 1280x1024x24" pvpython \
+    "$source/scripts/paraview/render_impact.py" "$work/impact_al_al.xmf" --out "$work/impact.png" \
+    2> "$work/pvpython.txt"
+}
+out=$(render) || { cat "$work/pvpython.txt" >&2; sleep 2; out=$(render); }
 echo "$out"
 # The ParaView pipeline drew the revolved particle and substrate: points and cells.
 echo "$out" | grep -Eq "impact.png: t = [0-9.e+-]+ s, [1-9][0-9]* points, [1-9][0-9]* cells \(revolved\)"
