@@ -150,8 +150,6 @@ std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, doubl
   return out;
 }
 
-}  // namespace
-
 // The velocity of `candidates` nearest beyond v (above when `up`) that the
 // fine level has not run.
 std::optional<double> nearest_beyond(const SeedContext& c, const std::vector<double>& candidates,
@@ -163,6 +161,8 @@ std::optional<double> nearest_beyond(const SeedContext& c, const std::vector<dou
   }
   return best;
 }
+
+}  // namespace
 
 std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::vector<Sample>& fine,
                                 double guard_band, const std::vector<double>& coarser) {

@@ -57,11 +57,11 @@ int usable_cores() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-// A failure that may pass on another attempt: queued again while retries
-// are left.
-// Attempts a job whose process could not be started gets at least.
+// Retries a job whose process could not be started gets at least.
 constexpr int k_spawn_retries = 3;
 
+// A failure that may pass on another attempt: queued again while retries
+// are left.
 JobEnd transient(const JobRecord& job, const JobOptions& opts, const std::string& what) {
   JobEnd e;
   e.retry = job.attempts <= opts.retries;
