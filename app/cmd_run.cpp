@@ -136,7 +136,7 @@ void register_run(CLI::App& app, CommandTable& commands) {
   sub->add_option("scene", o->scene, "Scene JSON file")->required();
   sub->add_option("--set", o->overrides,
                   "Override a scene field before validation: /json/pointer=VALUE (VALUE is JSON, "
-                  "or a plain string)");
+                  "or a plain string); missing objects on the way are created");
   sub->add_option("--out", o->out, "Output directory for the HDF5/XDMF files and the summary")
       ->capture_default_str();
   sub->add_flag("--json", o->json, "Print the summary as JSON (schemas/result.schema.json)");

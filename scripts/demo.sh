@@ -10,7 +10,8 @@
 # `splat windows --db out/demo/campaign.db --format json` to read them).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$here/scripts/setup.sh" "$here/build"
+# Builds only the program the demo runs (tests: scripts/test.sh).
+SPLAT_BUILD_TARGETS="${SPLAT_BUILD_TARGETS:-splat}" "$here/scripts/setup.sh" "$here/build"
 splat="$here/build/app/splat"
 out="$here/out/demo"
 mkdir -p "$out"

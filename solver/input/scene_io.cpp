@@ -806,7 +806,10 @@ void apply_override(json& doc, const std::string& text) {
     override_error(text, "the number is outside the range of a double");
   }
 
-  // Walk to the parent: every step must exist.
+  // Walk to the parent. A missing key of an object becomes an empty object
+  // (so `--set /time/max_time=1e-7` works on a scene without "time"); the
+  // scene schema then refuses a key that is no field, naming it. Array
+  // elements must exist.
   const json::json_pointer parent_pointer = pointer.parent_pointer();
   const std::string last = pointer.back();
   json* parent = &doc;
@@ -820,8 +823,7 @@ void apply_override(json& doc, const std::string& text) {
     walked += "/" + token;
     if (parent->is_object()) {
       const auto it = parent->find(token);
-      if (it == parent->end()) override_error(text, walked + " does not exist");
-      parent = &*it;
+      parent = it == parent->end() ? &((*parent)[token] = json::object()) : &*it;
     } else if (parent->is_array()) {
       if (!is_array_index(token) || std::stoul(token) >= parent->size()) {
         override_error(
