@@ -95,19 +95,16 @@ struct SeedContext {
   bool run(double v) const { return fine_run.count(v) > 0; }
 };
 
-// The coarse velocity nearest beyond v (above when `up`) not yet run at the
-// fine level.
-std::optional<double> next_coarse(const SeedContext& c, double v, bool up) {
-  if (up) {
-    for (double x : c.coarse) {
-      if (x > v && !c.run(x)) return x;
-    }
-  } else {
-    for (auto it = c.coarse.rbegin(); it != c.coarse.rend(); ++it) {
-      if (*it < v && !c.run(*it)) return *it;
-    }
+// The velocity of `candidates` nearest beyond v (above when `up`) that the
+// fine level has not run.
+std::optional<double> nearest_beyond(const SeedContext& c, const std::vector<double>& candidates,
+                                     double v, bool up) {
+  std::optional<double> best;
+  for (double x : candidates) {
+    if ((up ? x > v : x < v) && !c.run(x) && (!best || std::abs(x - v) < std::abs(*best - v)))
+      best = x;
   }
-  return std::nullopt;
+  return best;
 }
 
 // Seeds of one closed coarse edge with bracket [lo, hi]; `below` is the
@@ -150,18 +147,6 @@ std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, doubl
   return out;
 }
 
-// The velocity of `candidates` nearest beyond v (above when `up`) that the
-// fine level has not run.
-std::optional<double> nearest_beyond(const SeedContext& c, const std::vector<double>& candidates,
-                                     double v, bool up) {
-  std::optional<double> best;
-  for (double x : candidates) {
-    if ((up ? x > v : x < v) && !c.run(x) && (!best || std::abs(x - v) < std::abs(*best - v)))
-      best = x;
-  }
-  return best;
-}
-
 }  // namespace
 
 std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::vector<Sample>& fine,
@@ -200,7 +185,7 @@ std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::ve
   const Window fw = compute_window(fine);
   // None there: the nearest velocity a coarser level ran beyond it.
   auto beyond = [&](double v, bool up) {
-    if (const auto x = next_coarse(c, v, up)) return x;
+    if (const auto x = nearest_beyond(c, c.coarse, v, up)) return x;
     return nearest_beyond(c, coarser, v, up);
   };
   if (!fw.intervals.empty()) {

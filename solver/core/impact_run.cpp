@@ -42,12 +42,6 @@ NodeRange nodes_of(const Model& model, int b) {
           body_node_end(model, static_cast<std::size_t>(b))};
 }
 
-// P-wave speed of the undamaged material, m/s.
-double p_wave_speed(const Material& m) {
-  const double E = m.elastic.E, nu = m.elastic.nu;
-  return std::sqrt(E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu) * m.density));
-}
-
 // Height of node position p along the substrate normal (internal frame).
 double height(const Model& model, const Vec3& p) {
   return model.axisymmetric ? p.y() : p.z();

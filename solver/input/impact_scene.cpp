@@ -67,12 +67,6 @@ double impact_flow_stress(const Material& m) {
   return flow_stress(m.strength, ModelSwitches{}, 1.0, 1e7, T_ref).value;
 }
 
-// P-wave speed of the undamaged material, m/s.
-double p_wave_speed(const Material& m) {
-  const double E = m.elastic.E, nu = m.elastic.nu;
-  return std::sqrt(E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu) * m.density));
-}
-
 double effective_modulus(const Material& a, const Material& b) {
   auto term = [](const Material& m) { return (1.0 - m.elastic.nu * m.elastic.nu) / m.elastic.E; };
   return 1.0 / (term(a) + term(b));

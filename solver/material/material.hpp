@@ -3,6 +3,7 @@
 // solver/input/material_io.hpp; the kernels read it and never change it.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -83,5 +84,13 @@ struct Material {
   EosParams eos;
   DamageParams damage;
 };
+
+// Longitudinal (P-wave) speed of the undamaged elastic material,
+// sqrt(E (1 - nu) / ((1 + nu) (1 - 2 nu) rho0)), m/s (the equation of state
+// aside: MaterialConstants::wave_speed is the time-step speed).
+inline double p_wave_speed(const Material& m) {
+  const double E = m.elastic.E, nu = m.elastic.nu;
+  return std::sqrt(E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu) * m.density));
+}
 
 }  // namespace splat
