@@ -88,8 +88,8 @@ TEST(material_library, every_material_loads_under_its_own_name) {
     EXPECT_FALSE(m.source.empty());
     EXPECT_EQ(m.eos.model, EosModel::linear) << name << ": the thesis uses a linear EOS";
     // No Hugoniot was read for these alloys (their sources say so).
-    const bool no_hugoniot =
-        name == "ti6al4v-jc" || name == "ni200-jc" || name == "ss316l-jc" || name == "in718-jc";
+    const bool no_hugoniot = name == "ti6al4v-jc" || name == "ni200-jc" || name == "ss316l-jc" ||
+                             name == "in718-jc" || name == "fe-armco-jc" || name == "ta-ptw";
     EXPECT_EQ(m.eos.mie_gruneisen.has_value(), !no_hugoniot) << name;
   }
 }
@@ -308,8 +308,9 @@ TEST(material_lookup, unknown_name_lists_the_library) {
               (Violations{{"",
                            "unknown material 'unobtainium' (known: al-deck, al-thesis, "
                            "al-thesis-gf, al6061-t6-jc, cu-deck, cu-ofhc-jc, cu-ofhc-ptw, "
-                           "cu-thesis, in718-jc, ni200-jc, ss316l-jc, steel-hopkinson, "
-                           "ti6al4v-jc, ti6al4v-thesis; or give a path to a JSON file)"}}));
+                           "cu-thesis, fe-armco-jc, in718-jc, ni200-jc, ss316l-jc, "
+                           "steel-hopkinson, ta-ptw, ti6al4v-jc, ti6al4v-thesis; or give a path "
+                           "to a JSON file)"}}));
   }
 }
 
