@@ -188,9 +188,13 @@ TEST(material_library, numbers_make_physical_sense) {
     EXPECT_LT(m.thermal.c_p, 2000.0);
     EXPECT_GT(ref.T_melt, 600.0);
     EXPECT_LT(ref.T_melt, 4000.0);
-    EXPECT_NEAR(ref.T_ref, 300.0, 10.0);
-    const double bulk_sound_speed = std::sqrt(m.elastic.bulk_modulus() / m.density);
-    EXPECT_NEAR(m.eos.mie_gruneisen->c0 / bulk_sound_speed, 1.0, 0.2);
+    // Room temperature: 273 K (fe-armco-jc, as its quoted table) to 310 K.
+    EXPECT_GE(ref.T_ref, 273.0);
+    EXPECT_LE(ref.T_ref, 310.0);
+    if (m.eos.mie_gruneisen) {
+      const double bulk_sound_speed = std::sqrt(m.elastic.bulk_modulus() / m.density);
+      EXPECT_NEAR(m.eos.mie_gruneisen->c0 / bulk_sound_speed, 1.0, 0.2);
+    }
     if (m.damage.initiation == DamageInitiation::johnson_cook) {
       // Positive failure strain without triaxiality, falling as it rises.
       EXPECT_GT(m.damage.jc.D1 + m.damage.jc.D2, 0.0);

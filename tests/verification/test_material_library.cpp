@@ -121,7 +121,8 @@ TEST(material_library_sources, constants_match_their_sources) {
 // at T_ref, rounded to five significant figures in the file.
 TEST(material_library_sources, ptw_shear_modulus_is_the_source_value_at_the_reference_temperature) {
   for (const exact::PtwSourceSet& s : exact::ptw_library_sources) {
-    const auto& w = std::get<PrestonTonksWallaceParams>(load_material(s.material).strength);
+    const Material m = load_material(s.material);
+    const auto& w = std::get<PrestonTonksWallaceParams>(m.strength);
     const double G = exact::shear_modulus_at(s, s.T_ref);
     EXPECT_NEAR(w.G, G, 1e-5 * G) << s.material;
     EXPECT_EQ(w.T_ref, s.T_ref) << s.material;
