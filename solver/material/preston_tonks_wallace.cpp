@@ -29,11 +29,17 @@ NormalisedStress normalised_stress(const PrestonTonksWallaceParams& w, double ps
                                 std::min(w.y1 * std::pow(r, w.y2), shock_saturation));
   const double a = w.s0 - tau_y;
   if (!(tau_s > tau_y) || a == 0.0) return {tau_s, 0.0};
-  const double b = w.p * (tau_s - tau_y) / a;
+  const double d = tau_s - tau_y;
+  if (w.p == 0.0) {
+    // The p -> 0 limit (header): a Voce law.
+    const double X0 = std::exp(-w.theta * psi / d);
+    return {tau_s - d * X0, w.theta * X0};
+  }
+  const double b = w.p * d / a;
   const double X = std::exp(-w.p * w.theta * psi / (a * std::expm1(b)));
   const double c = -std::expm1(-b);  // 1 - exp(-b)
   const double inner = 1.0 - c * X;
-  return {tau_s + a / w.p * std::log(inner), w.theta * (1.0 - c) * X / inner};
+  return {tau_s + a / w.p * std::log1p(-c * X), w.theta * (1.0 - c) * X / inner};
 }
 
 }  // namespace

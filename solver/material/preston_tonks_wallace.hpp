@@ -14,6 +14,18 @@
 //           b = p (tau_s - tau_y) / (s0 - tau_y)   (tau = tau_s where tau_y >= tau_s)
 //   sigma_y = 2 G tau.
 //
+// p = 0 (the paper's tantalum) is the limit p -> 0 of tau: with
+// d = tau_s - tau_y, b -> 0 as p d / (s0 - tau_y), exp(b) - 1 ~ b and
+// 1 - exp(-b) ~ b, so the exponential tends to X0 = exp(-theta psi / d) and
+// (s0 - tau_y) / p ln(1 - b X0) ~ (s0 - tau_y) / p (-b X0) = -d X0:
+//
+//   tau(p = 0) = tau_s - (tau_s - tau_y) exp(-theta psi / (tau_s - tau_y)),
+//   d tau / d psi (p = 0) = theta exp(-theta psi / (tau_s - tau_y)),
+//
+// a Voce law from tau_y at psi = 0 with initial slope theta towards tau_s.
+// For p > 0 the kernel evaluates the logarithm as log1p, so a small p
+// joins this limit continuously.
+//
 // G and rho are the constant shear modulus and density of the fit (the
 // paper lets G vary with rho and T). Additions of ours, as in the other
 // laws: rates below eps_dot_0 count as eps_dot_0, and there is no strength at
@@ -31,7 +43,7 @@ namespace splat {
 struct PrestonTonksWallaceParams {
   static constexpr const char* model = "preston-tonks-wallace";
   double theta = 0.0;      // initial hardening rate, normalised, -
-  double p = 1.0;          // hardening shape, -
+  double p = 1.0;          // hardening shape, >= 0 (0: the limit above), -
   double s0 = 0.0;         // saturation stress at 0 K, normalised, -
   double s_inf = 0.0;      // saturation stress at high T^ ln(1/r), normalised, -
   double kappa = 0.0;      // temperature dependence of the thermally activated stresses, -

@@ -21,7 +21,7 @@ struct JcSourceSet {
   double c_p;            // J/(kg K)
 };
 
-inline constexpr std::array<JcSourceSet, 6> jc_library_sources{{
+inline constexpr std::array<JcSourceSet, 7> jc_library_sources{{
     // Johnson & Cook (1983), OFHC copper; T_ref as the quoting record (294 K).
     {"cu-ofhc-jc",
      "Johnson & Cook 1983",
@@ -75,6 +75,16 @@ inline constexpr std::array<JcSourceSet, 6> jc_library_sources{{
      205e9,
      0.30,
      425.0},
+    // Johnson & Cook (1983), Armco iron, as Zhang et al. (2017) quote it (m
+    // 0.55; Uintah's copy has 1.44, see materials/fe-armco-jc.json; T_ref
+    // 273 K); density, E, nu and c_p of pure iron at periodictable.com.
+    {"fe-armco-jc",
+     "Johnson & Cook 1983, Armco iron",
+     {175e6, 380e6, 0.32, 0.06, 1.0, 0.55, 273.0, 1811.0},
+     7874.0,
+     211e9,
+     0.29,
+     449.0},
 }};
 
 }  // namespace splat::exact

@@ -32,11 +32,15 @@ inline void ptw_bounds(const PtwCurve& c, double rate, double T, double& tau_s, 
                                                          c.s0 * std::pow(rate_ratio, c.beta)));
 }
 
+// p = 0 is the limit p -> 0 of the hardening law (the paper's tantalum):
+// tau = tau_s - (tau_s - tau_y) exp(-theta eps_p / (tau_s - tau_y)).
 inline double ptw_flow_stress(const PtwCurve& c, double eps_p, double rate, double T) {
   if (T >= c.T_melt) return 0.0;
   double ts = 0.0, ty = 0.0;
   ptw_bounds(c, rate, T, ts, ty);
   if (ts <= ty) return 2.0 * c.G * ts;
+  if (c.p == 0.0)
+    return 2.0 * c.G * (ts - (ts - ty) * std::exp(-c.theta * std::max(eps_p, 0.0) / (ts - ty)));
   const double b = c.p * (ts - ty) / (c.s0 - ty);
   const double decay =
       std::exp(-c.p * c.theta * std::max(eps_p, 0.0) / ((c.s0 - ty) * (std::exp(b) - 1.0)));
@@ -50,6 +54,8 @@ inline double ptw_hardening_slope(const PtwCurve& c, double eps_p, double rate, 
   double ts = 0.0, ty = 0.0;
   ptw_bounds(c, rate, T, ts, ty);
   if (ts <= ty) return 0.0;
+  if (c.p == 0.0)
+    return 2.0 * c.G * c.theta * std::exp(-c.theta * std::max(eps_p, 0.0) / (ts - ty));
   const double b = c.p * (ts - ty) / (c.s0 - ty);
   const double decay =
       std::exp(-c.p * c.theta * std::max(eps_p, 0.0) / ((c.s0 - ty) * (std::exp(b) - 1.0)));

@@ -1,17 +1,20 @@
-// The library materials with a published Johnson-Cook set
-// (tests/exact/jc_library_sources.hpp), each as particle and substrate of
-// scenes/impact_al_al.json at 300 and 800 m/s: every run ends with a stick or
-// rebound verdict, not a numerical failure, and keeps its energy balance
-// within 5 % (the twelve runs take a few seconds on one thread;
-// docs/validation.md, "Material library", lists what each run gives).
+// The library materials with a published Johnson-Cook or Preston-Tonks-Wallace
+// set (tests/exact/jc_library_sources.hpp, tests/exact/ptw_library_sources.hpp),
+// each as particle and substrate of scenes/impact_al_al.json at 300 and
+// 800 m/s: every run ends with a stick or rebound verdict, not a numerical
+// failure, and keeps its energy balance within 5 % (the sixteen runs take a
+// few seconds on one thread; docs/validation.md, "Material library", lists
+// what each run gives).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "exact/jc_library_sources.hpp"
+#include "exact/ptw_library_sources.hpp"
 #include "support/scene_runs.hpp"
 
 namespace splat {
@@ -26,14 +29,20 @@ nlohmann::json impact_scene(const std::string& material, double velocity) {
   return doc;
 }
 
+std::vector<std::string> published_sets() {
+  std::vector<std::string> names;
+  for (const exact::JcSourceSet& s : exact::jc_library_sources) names.emplace_back(s.material);
+  for (const exact::PtwSourceSet& s : exact::ptw_library_sources) names.emplace_back(s.material);
+  return names;
+}
+
 TEST(library_material_impacts, each_published_set_ends_in_a_verdict_at_300_and_800_m_s) {
-  for (const exact::JcSourceSet& s : exact::jc_library_sources) {
+  for (const std::string& material : published_sets()) {
     for (double v : {300.0, 800.0}) {
-      const RunSummary r = test_support::run_scene(impact_scene(s.material, v));
+      const RunSummary r = test_support::run_scene(impact_scene(material, v));
       EXPECT_TRUE(r.outcome == RunOutcome::stick || r.outcome == RunOutcome::rebound)
-          << s.material << " at " << v << " m/s: " << to_string(r.outcome) << " (" << r.reason
-          << ")";
-      EXPECT_LT(std::abs(r.energy.balance_error), 0.05) << s.material << " at " << v << " m/s";
+          << material << " at " << v << " m/s: " << to_string(r.outcome) << " (" << r.reason << ")";
+      EXPECT_LT(std::abs(r.energy.balance_error), 0.05) << material << " at " << v << " m/s";
     }
   }
 }

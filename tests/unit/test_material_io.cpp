@@ -88,8 +88,8 @@ TEST(material_library, every_material_loads_under_its_own_name) {
     EXPECT_FALSE(m.source.empty());
     EXPECT_EQ(m.eos.model, EosModel::linear) << name << ": the thesis uses a linear EOS";
     // No Hugoniot was read for these alloys (their sources say so).
-    const bool no_hugoniot =
-        name == "ti6al4v-jc" || name == "ni200-jc" || name == "ss316l-jc" || name == "in718-jc";
+    const bool no_hugoniot = name == "ti6al4v-jc" || name == "ni200-jc" || name == "ss316l-jc" ||
+                             name == "in718-jc" || name == "fe-armco-jc" || name == "ta-ptw";
     EXPECT_EQ(m.eos.mie_gruneisen.has_value(), !no_hugoniot) << name;
   }
 }
@@ -188,9 +188,13 @@ TEST(material_library, numbers_make_physical_sense) {
     EXPECT_LT(m.thermal.c_p, 2000.0);
     EXPECT_GT(ref.T_melt, 600.0);
     EXPECT_LT(ref.T_melt, 4000.0);
-    EXPECT_NEAR(ref.T_ref, 300.0, 10.0);
-    const double bulk_sound_speed = std::sqrt(m.elastic.bulk_modulus() / m.density);
-    EXPECT_NEAR(m.eos.mie_gruneisen->c0 / bulk_sound_speed, 1.0, 0.2);
+    // Room temperature: 273 K (fe-armco-jc, as its quoted table) to 310 K.
+    EXPECT_GE(ref.T_ref, 273.0);
+    EXPECT_LE(ref.T_ref, 310.0);
+    if (m.eos.mie_gruneisen) {
+      const double bulk_sound_speed = std::sqrt(m.elastic.bulk_modulus() / m.density);
+      EXPECT_NEAR(m.eos.mie_gruneisen->c0 / bulk_sound_speed, 1.0, 0.2);
+    }
     if (m.damage.initiation == DamageInitiation::johnson_cook) {
       // Positive failure strain without triaxiality, falling as it rises.
       EXPECT_GT(m.damage.jc.D1 + m.damage.jc.D2, 0.0);
@@ -308,8 +312,9 @@ TEST(material_lookup, unknown_name_lists_the_library) {
               (Violations{{"",
                            "unknown material 'unobtainium' (known: al-deck, al-thesis, "
                            "al-thesis-gf, al6061-t6-jc, cu-deck, cu-ofhc-jc, cu-ofhc-ptw, "
-                           "cu-thesis, in718-jc, ni200-jc, ss316l-jc, steel-hopkinson, "
-                           "ti6al4v-jc, ti6al4v-thesis; or give a path to a JSON file)"}}));
+                           "cu-thesis, fe-armco-jc, in718-jc, ni200-jc, ss316l-jc, "
+                           "steel-hopkinson, ta-ptw, ti6al4v-jc, ti6al4v-thesis; or give a path "
+                           "to a JSON file)"}}));
   }
 }
 

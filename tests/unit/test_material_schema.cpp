@@ -55,10 +55,11 @@ bool is_closed(const json& node) {
 
 TEST(material_schema, every_library_material_is_valid) {
   const std::vector<std::string> names = material_names();
-  EXPECT_EQ(names, (std::vector<std::string>{"al-deck", "al-thesis", "al-thesis-gf", "al6061-t6-jc",
-                                             "cu-deck", "cu-ofhc-jc", "cu-ofhc-ptw", "cu-thesis",
-                                             "in718-jc", "ni200-jc", "ss316l-jc", "steel-hopkinson",
-                                             "ti6al4v-jc", "ti6al4v-thesis"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{
+                "al-deck", "al-thesis", "al-thesis-gf", "al6061-t6-jc", "cu-deck", "cu-ofhc-jc",
+                "cu-ofhc-ptw", "cu-thesis", "fe-armco-jc", "in718-jc", "ni200-jc", "ss316l-jc",
+                "steel-hopkinson", "ta-ptw", "ti6al4v-jc", "ti6al4v-thesis"}));
   for (const std::string& name : names) {
     const json doc = library(name);
     EXPECT_EQ(check(doc), Violations{}) << name;

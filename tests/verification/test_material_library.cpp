@@ -1,5 +1,6 @@
 // The library materials with a published Johnson-Cook set
-// (tests/exact/jc_library_sources.hpp) against their sources: every library
+// (tests/exact/jc_library_sources.hpp) or Preston-Tonks-Wallace set
+// (tests/exact/ptw_library_sources.hpp) against their sources: every library
 // file loads and passes the magnitude guard, and `splat mat-point`'s driver
 // reproduces each source's closed form at three plastic strains and several
 // isothermal conditions. No source read gives curve points, so the curve check
@@ -17,6 +18,8 @@
 
 #include "exact/jc_library_sources.hpp"
 #include "exact/johnson_cook_closed_form.hpp"
+#include "exact/preston_tonks_wallace_closed_form.hpp"
+#include "exact/ptw_library_sources.hpp"
 #include "solver/input/material_io.hpp"
 #include "solver/material/material_point_driver.hpp"
 
@@ -30,13 +33,53 @@ struct Condition {
 };
 
 // Reference temperature, 1/s and 1e3/s; 1/s at T_ref + 300 K (below every
-// library melting point) so that m and T_melt enter; and, for 6061-T6, the
-// 4000/s and 298 K of Lesuer's curves (the al6061-t6-jc source).
-std::vector<Condition> conditions_of(const exact::JcSourceSet& s) {
-  std::vector<Condition> c{
-      {1.0, s.curve.T_ref}, {1e3, s.curve.T_ref}, {1.0, s.curve.T_ref + 300.0}};
-  if (std::string(s.material) == "al6061-t6-jc") c.push_back({4000.0, 298.0});
+// library melting point) so that the thermal softening enters; and, for
+// 6061-T6, the 4000/s and 298 K of Lesuer's curves (the al6061-t6-jc source).
+std::vector<Condition> conditions_of(const std::string& material, double T_ref) {
+  std::vector<Condition> c{{1.0, T_ref}, {1e3, T_ref}, {1.0, T_ref + 300.0}};
+  if (material == "al6061-t6-jc") c.push_back({4000.0, 298.0});
   return c;
+}
+
+// Isothermal uniaxial stress: the driver's stress at plastic strains 0.05,
+// 0.2 and 0.5 against the source's closed form flow(eps_p, rate_p, T) at the
+// plastic rate rate_p = rate E / (E + H), H = slope(eps_p, rate, T) the
+// curve's slope (as test_material_point.cpp), within 0.1 %. Returns the
+// worst relative deviation.
+template <class Flow, class Slope>
+double worst_deviation_from(const std::string& material, const char* source, double E,
+                            const std::vector<Condition>& conditions, Flow flow, Slope slope) {
+  double worst = 0.0;
+  for (const Condition& c : conditions) {
+    MaterialPointRequest r;
+    r.material = load_material(material);
+    r.mode = LoadingMode::uniaxial_stress;
+    r.strain_rate = c.rate;
+    r.max_strain = -0.6;
+    r.steps = 1200;
+    r.temperature = c.T;
+    r.switches.adiabatic_heating = false;
+    r.switches.damage = false;
+    const MaterialPointResult res = run_material_point(r);
+    EXPECT_TRUE(res.converged) << material << ": " << res.message;
+    if (!res.converged) return 1.0;
+    for (double target : {0.05, 0.2, 0.5}) {
+      const auto row =
+          std::find_if(res.rows.begin(), res.rows.end(),
+                       [&](const MaterialPointRow& w) { return w.plastic_strain >= target; });
+      EXPECT_NE(row, res.rows.end()) << material << " eps_p " << target;
+      if (row == res.rows.end()) return 1.0;
+      const double H = slope(row->plastic_strain, c.rate, c.T);
+      const double rate_p = c.rate * E / (E + H);
+      const double expected = flow(row->plastic_strain, rate_p, c.T);
+      const double deviation = std::abs(-row->stress - expected) / expected;
+      worst = std::max(worst, deviation);
+      EXPECT_LT(deviation, 1e-3) << material << " (" << source << ") rate " << c.rate << " T "
+                                 << c.T << " eps_p " << row->plastic_strain << ": driver "
+                                 << -row->stress << " Pa, source " << expected << " Pa";
+    }
+  }
+  return worst;
 }
 
 TEST(material_library_sources, every_file_loads_and_passes_the_magnitude_guard) {
@@ -52,6 +95,8 @@ TEST(material_library_sources, published_sets_are_in_the_library) {
   const std::vector<std::string> names = material_names();
   for (const exact::JcSourceSet& s : exact::jc_library_sources)
     EXPECT_NE(std::find(names.begin(), names.end(), s.material), names.end()) << s.material;
+  for (const exact::PtwSourceSet& s : exact::ptw_library_sources)
+    EXPECT_NE(std::find(names.begin(), names.end(), s.material), names.end()) << s.material;
 }
 
 // Density, elastic constants and c_p exactly as the source prints them.
@@ -63,44 +108,48 @@ TEST(material_library_sources, constants_match_their_sources) {
     EXPECT_EQ(m.elastic.nu, s.nu) << s.material;
     EXPECT_EQ(m.thermal.c_p, s.c_p) << s.material;
   }
+  for (const exact::PtwSourceSet& s : exact::ptw_library_sources) {
+    const Material m = load_material(s.material);
+    EXPECT_EQ(m.density, s.density) << s.material;
+    EXPECT_EQ(m.elastic.E, s.E) << s.material;
+    EXPECT_EQ(m.elastic.nu, s.nu) << s.material;
+    EXPECT_EQ(m.thermal.c_p, s.c_p) << s.material;
+  }
 }
 
-// Isothermal uniaxial stress: the driver's stress at plastic strains 0.05,
-// 0.2 and 0.5 against the source's closed form evaluated at the plastic rate
-// rate E / (E + H) (H the curve's slope; as test_material_point.cpp), within
-// 0.1 %: a 1.34 -> 1.43 slip in m shows as 3.7 %, 1092 -> 1029 MPa in B as 1
-// to 2 % at eps_p 0.2 and 0.5. The parameters of the closed form are the
-// source's, not the file's.
+// A PTW file's constant shear modulus is the source's G0 (1 - alpha T / T_melt)
+// at T_ref, rounded to five significant figures in the file.
+TEST(material_library_sources, ptw_shear_modulus_is_the_source_value_at_the_reference_temperature) {
+  for (const exact::PtwSourceSet& s : exact::ptw_library_sources) {
+    const Material m = load_material(s.material);
+    const auto& w = std::get<PrestonTonksWallaceParams>(m.strength);
+    const double G = exact::shear_modulus_at(s, s.T_ref);
+    EXPECT_NEAR(w.G, G, 1e-5 * G) << s.material;
+    EXPECT_EQ(w.T_ref, s.T_ref) << s.material;
+  }
+}
+
+// The driver against each source's closed form (see worst_deviation_from):
+// a 1.34 -> 1.43 slip in a Johnson-Cook m shows as 3.7 %, 1092 -> 1029 MPa in
+// B as 1 to 2 % at eps_p 0.2 and 0.5. The parameters of the closed form are
+// the source's, not the file's.
 TEST(material_library_sources, flow_stress_follows_the_source_closed_form) {
   for (const exact::JcSourceSet& s : exact::jc_library_sources) {
-    double worst = 0.0;
-    for (const Condition& c : conditions_of(s)) {
-      MaterialPointRequest r;
-      r.material = load_material(s.material);
-      r.mode = LoadingMode::uniaxial_stress;
-      r.strain_rate = c.rate;
-      r.max_strain = -0.6;
-      r.steps = 1200;
-      r.temperature = c.T;
-      r.switches.adiabatic_heating = false;
-      r.switches.damage = false;
-      const MaterialPointResult res = run_material_point(r);
-      ASSERT_TRUE(res.converged) << s.material << ": " << res.message;
-      for (double target : {0.05, 0.2, 0.5}) {
-        const auto row =
-            std::find_if(res.rows.begin(), res.rows.end(),
-                         [&](const MaterialPointRow& w) { return w.plastic_strain >= target; });
-        ASSERT_NE(row, res.rows.end()) << s.material << " eps_p " << target;
-        const double H = exact::jc_hardening_slope(s.curve, row->plastic_strain, c.rate, c.T);
-        const double rate_p = c.rate * s.E / (s.E + H);
-        const double expected = exact::jc_flow_stress(s.curve, row->plastic_strain, rate_p, c.T);
-        const double deviation = std::abs(-row->stress - expected) / expected;
-        worst = std::max(worst, deviation);
-        EXPECT_LT(deviation, 1e-3) << s.material << " (" << s.source << ") rate " << c.rate << " T "
-                                   << c.T << " eps_p " << row->plastic_strain << ": driver "
-                                   << -row->stress << " Pa, source " << expected << " Pa";
-      }
-    }
+    const double worst = worst_deviation_from(
+        s.material, s.source, s.E, conditions_of(s.material, s.curve.T_ref),
+        [&](double e, double rate, double T) { return exact::jc_flow_stress(s.curve, e, rate, T); },
+        [&](double e, double rate, double T) {
+          return exact::jc_hardening_slope(s.curve, e, rate, T);
+        });
+    std::printf("%s: worst deviation from the closed form of %s: %.2e\n", s.material, s.source,
+                worst);
+  }
+  for (const exact::PtwSourceSet& s : exact::ptw_library_sources) {
+    const exact::PtwCurve c = exact::curve_at_reference(s);
+    const double worst = worst_deviation_from(
+        s.material, s.source, s.E, conditions_of(s.material, s.T_ref),
+        [&](double e, double rate, double T) { return exact::ptw_flow_stress(c, e, rate, T); },
+        [&](double e, double rate, double T) { return exact::ptw_hardening_slope(c, e, rate, T); });
     std::printf("%s: worst deviation from the closed form of %s: %.2e\n", s.material, s.source,
                 worst);
   }
