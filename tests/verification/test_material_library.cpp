@@ -99,22 +99,21 @@ TEST(material_library_sources, published_sets_are_in_the_library) {
     EXPECT_NE(std::find(names.begin(), names.end(), s.material), names.end()) << s.material;
 }
 
-// Density, elastic constants and c_p exactly as the source prints them.
+// Density, elastic constants and c_p of each source set, exactly as printed.
+template <class SourceSets>
+void expect_constants_as_printed(const SourceSets& sets) {
+  for (const auto& s : sets) {
+    const Material m = load_material(s.material);
+    EXPECT_EQ(m.density, s.density) << s.material;
+    EXPECT_EQ(m.elastic.E, s.E) << s.material;
+    EXPECT_EQ(m.elastic.nu, s.nu) << s.material;
+    EXPECT_EQ(m.thermal.c_p, s.c_p) << s.material;
+  }
+}
+
 TEST(material_library_sources, constants_match_their_sources) {
-  for (const exact::JcSourceSet& s : exact::jc_library_sources) {
-    const Material m = load_material(s.material);
-    EXPECT_EQ(m.density, s.density) << s.material;
-    EXPECT_EQ(m.elastic.E, s.E) << s.material;
-    EXPECT_EQ(m.elastic.nu, s.nu) << s.material;
-    EXPECT_EQ(m.thermal.c_p, s.c_p) << s.material;
-  }
-  for (const exact::PtwSourceSet& s : exact::ptw_library_sources) {
-    const Material m = load_material(s.material);
-    EXPECT_EQ(m.density, s.density) << s.material;
-    EXPECT_EQ(m.elastic.E, s.E) << s.material;
-    EXPECT_EQ(m.elastic.nu, s.nu) << s.material;
-    EXPECT_EQ(m.thermal.c_p, s.c_p) << s.material;
-  }
+  expect_constants_as_printed(exact::jc_library_sources);
+  expect_constants_as_printed(exact::ptw_library_sources);
 }
 
 // A PTW file's constant shear modulus is the source's G0 (1 - alpha T / T_melt)
