@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 #include "solver/core/sph_model.hpp"
@@ -163,6 +164,16 @@ void add_spin(NodeSet& nodes, std::size_t first, const Vec3& w) {
   for (std::size_t i = first; i < nodes.size(); ++i) nodes.v[i] += w.cross(nodes.x[i] - centre);
 }
 
+// The node set of a named boundary condition, with its mean initial position.
+void add_reaction_set(Model& model, const std::string& name, const std::vector<int>& nodes) {
+  ReactionSet r;
+  r.name = name;
+  r.nodes = nodes;
+  for (const int i : nodes) r.initial_mean += model.nodes.x[static_cast<std::size_t>(i)];
+  if (!nodes.empty()) r.initial_mean /= static_cast<double>(nodes.size());
+  model.reaction_sets.push_back(std::move(r));
+}
+
 }  // namespace
 
 std::size_t body_node_begin(const Model& model, std::size_t scene_index) {
@@ -183,6 +194,25 @@ Vec3 centroid_velocity(const Model& model, const Vec3& momentum, double mass) {
   if (mass <= 0.0) return Vec3::Zero();
   const Vec3 v = momentum / mass;
   return model.axisymmetric ? Vec3(0.0, 0.0, v.y()) : v;
+}
+
+ReactionHistory reaction_history(const Model& model, const ReactionSet& set) {
+  Vec3 force = Vec3::Zero(), position = Vec3::Zero();
+  for (const int i : set.nodes) {
+    force -= model.nodes.f[static_cast<std::size_t>(i)];
+    position += model.nodes.x[static_cast<std::size_t>(i)];
+  }
+  ReactionHistory h;
+  if (set.nodes.empty()) return h;
+  const Vec3 displacement = position / static_cast<double>(set.nodes.size()) - set.initial_mean;
+  if (model.axisymmetric) {
+    h.force = Vec3(0.0, 0.0, 2.0 * std::numbers::pi * force.y());
+    h.displacement = Vec3(displacement.x(), 0.0, displacement.y());
+  } else {
+    h.force = force;
+    h.displacement = displacement;
+  }
+  return h;
 }
 
 Vec3 to_internal_frame(const Model& model, const Vec3& v) {
@@ -277,6 +307,13 @@ Model build_model(const Scene& scene) {
     const std::string ptr = "/boundary_conditions/" + std::to_string(ci);
     const std::size_t bi = body_index(bc.body, ptr + "/body");
     const BodyRef ref = model.body_refs[bi];
+    const std::size_t node_begin = body_node_begin(model, bi);
+    const std::size_t node_end = body_node_end(model, bi);
+    std::vector<int> set;  // the condition's nodes
+    for (std::size_t i = node_begin; i < node_end; ++i) {
+      if (model.nodes.boundary[i] & bc.on) set.push_back(static_cast<int>(i));
+    }
+    if (!bc.name.empty()) add_reaction_set(model, bc.name, set);
     if (ref.sph) {
       const SphBody& sb = model.sph_bodies[ref.index];
       if (bc.type == BoundaryType::absorbing) {
@@ -287,8 +324,6 @@ Model build_model(const Scene& scene) {
       // Symmetry planes are mirrored ghosts (sph_symmetry_planes): no constraint.
       if (bc.type == BoundaryType::symmetry) continue;
     }
-    const std::size_t node_begin = body_node_begin(model, bi);
-    const std::size_t node_end = body_node_end(model, bi);
     if (bc.type == BoundaryType::absorbing) {
       const FeBody& body = model.bodies[ref.index];
       const Material& m = body.material;
@@ -313,7 +348,12 @@ Model build_model(const Scene& scene) {
         mask = all;
         break;
       case BoundaryType::velocity:
-        mask = all;
+        // User components x, y, z; axisymmetric x (radial) -> 0, z -> 1.
+        for (int c = 0; c < 3; ++c) {
+          if (!bc.components[static_cast<std::size_t>(c)]) continue;
+          if (model.axisymmetric && c == 1) continue;
+          mask |= static_cast<std::uint8_t>(1u << (model.axisymmetric && c == 2 ? 1 : c));
+        }
         value = to_internal_frame(model, bc.velocity);
         break;
       case BoundaryType::symmetry: {
@@ -325,12 +365,19 @@ Model build_model(const Scene& scene) {
       case BoundaryType::absorbing:
         break;
     }
-    for (std::size_t i = node_begin; i < node_end; ++i) {
-      if (!(model.nodes.boundary[i] & bc.on)) continue;
-      model.constraint_mask[i] |= mask;
+    for (const int i : set) {
+      model.constraint_mask[static_cast<std::size_t>(i)] |= mask;
       for (int c = 0; c < 3; ++c) {
-        if (mask & (1u << c)) model.constraint_value[i][c] = value[c];
+        if (mask & (1u << c)) model.constraint_value[static_cast<std::size_t>(i)][c] = value[c];
       }
+    }
+    if (bc.history) {
+      DrivenSet driven;
+      driven.nodes = std::move(set);
+      driven.mask = mask;
+      driven.history = *bc.history;
+      for (Vec3& v : driven.history.velocity) v = to_internal_frame(model, v);
+      model.driven.push_back(std::move(driven));
     }
   }
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "solver/contact/contact_interface.hpp"
@@ -42,6 +43,23 @@ struct BodyRef {
   std::size_t index = 0;
 };
 
+// Nodes whose prescribed velocity follows a table (a velocity condition with
+// a history): before each step's velocity update the time loop sets their
+// constraint_value components in `mask` to the table's mean over the step.
+struct DrivenSet {
+  std::vector<int> nodes;
+  std::uint8_t mask = 0;    // bit c = internal component c prescribed
+  VelocityHistory history;  // internal frame (axisymmetric: (vr, vz, 0))
+};
+
+// The nodes of a named boundary condition, whose reaction force and mean
+// displacement the result file records (simulation_output.cpp).
+struct ReactionSet {
+  std::string name;
+  std::vector<int> nodes;
+  Vec3 initial_mean = Vec3::Zero();  // mean initial position, internal frame, m (set once)
+};
+
 struct Model {
   bool axisymmetric = false;
   NodeSet nodes;
@@ -51,7 +69,10 @@ struct Model {
   std::vector<SphAbsorbing> sph_absorbing;    // absorbing layers of SPH bodies
   std::vector<BodyMeshInfo> meshes;           // one per FE body
   std::vector<std::uint8_t> constraint_mask;  // per node: bit c = component c prescribed
-  std::vector<Vec3> constraint_value;         // per node: prescribed velocity, m/s
+  std::vector<Vec3> constraint_value;         // per node: prescribed velocity, m/s (driven
+                                              // sets: every step)
+  std::vector<DrivenSet> driven;              // tabulated prescribed velocities
+  std::vector<ReactionSet> reaction_sets;     // named boundary conditions, scene order
   std::vector<RigidWall> walls;
   std::vector<AbsorbingFace> absorbing;
   std::vector<ContactInterface> contacts;  // scene order of the contact interactions
@@ -89,6 +110,18 @@ Vec3 to_user_frame(const Model& model, const Vec3& v);
 // Centre-of-mass velocity in the user frame from a body's momentum and mass
 // (axisymmetric: only the axial component; the radial one averages to zero).
 Vec3 centroid_velocity(const Model& model, const Vec3& momentum, double mass);
+// The reaction force on a named node set and the set's mean displacement,
+// user frame. force: what the constraints apply to the body, -sum f over the
+// set's nodes (the nodal forces of the last force evaluation; the nodes'
+// inertia m a is left out, exact for nodes held at a constant velocity), N;
+// axisymmetric: over the whole ring, axial only (the radial forces of a ring
+// have no resultant). displacement: mean of the nodes' displacements, m
+// (axisymmetric: x radial, z axial).
+struct ReactionHistory {
+  Vec3 force = Vec3::Zero();         // N
+  Vec3 displacement = Vec3::Zero();  // m
+};
+ReactionHistory reaction_history(const Model& model, const ReactionSet& set);
 // User frame -> internal frame: axisymmetric (x, y, z) -> (hypot(x, y), z, 0).
 Vec3 to_internal_frame(const Model& model, const Vec3& v);
 

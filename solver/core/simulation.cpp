@@ -17,6 +17,7 @@
 #include "solver/core/model_builder.hpp"
 #include "solver/core/simulation_impl.hpp"
 #include "solver/io/result_file.hpp"
+#include "solver/scene/velocity_history.hpp"
 
 namespace splat {
 
@@ -81,6 +82,7 @@ Vec3 dashpot_update(double m, const Vec3& v_old, const Vec3& f, const Mat3& C, d
 // blew up a uniform 3D mesh at the default stability coefficient; the
 // absorbed energy dt v_mid . C v_mid is what the dashpot takes out.
 void Simulation::Impl::update_velocities(bool first) {
+  set_driven_velocities();
   NodeSet& n = model.nodes;
   const double dt_v = first ? 0.5 * dt_half : 0.5 * (dt_half_prev + dt_half);
   const std::size_t count = n.size();
@@ -154,6 +156,20 @@ void Simulation::Impl::update_velocities(bool first) {
   energy.wall_work += wall_work * scale();
   for (ContactInterface& c : model.contacts) c.book_penalty_work(n, dt_v);
   book_sph_dissipation(sph_power, dt_v);
+}
+
+// Stage 1, first: the prescribed velocity of the nodes driven by a table is
+// the table's mean over the coming step [t_n, t_n + dt], so that x_{n+1} =
+// x_n + dt v_{n+1/2} moves them by the table's exact displacement.
+void Simulation::Impl::set_driven_velocities() {
+  for (const DrivenSet& d : model.driven) {
+    const Vec3 v = history_mean_velocity(d.history, time, dt_half);
+    for (const int i : d.nodes) {
+      for (int c = 0; c < 3; ++c) {
+        if (d.mask & (1u << c)) model.constraint_value[static_cast<std::size_t>(i)][c] = v[c];
+      }
+    }
+  }
 }
 
 // Stage 2.

@@ -63,6 +63,7 @@ struct Simulation::Impl {
   // Energy factor: axisymmetric quantities are per radian.
   double scale() const { return model.axisymmetric ? 2.0 * std::numbers::pi : 1.0; }
 
+  void set_driven_velocities();
   void update_velocities(bool first);
   void predict_positions();
   void contact_constraints();

@@ -56,6 +56,12 @@ void Simulation::Impl::open_output() {
     columns.emplace_back(prefix + "bonded_area", "m^2");
     columns.emplace_back(prefix + "adhesion_work", "J");
   }
+  for (const ReactionSet& r : model.reaction_sets) {
+    for (const char* c : {"_reaction_x", "_reaction_y", "_reaction_z"})
+      columns.emplace_back(r.name + c, "N");
+    for (const char* c : {"_displacement_x", "_displacement_y", "_displacement_z"})
+      columns.emplace_back(r.name + c, "m");
+  }
   file = std::make_unique<ResultFile>(h5_path, std::move(topo), std::move(columns));
   file->set_attribute("solver_version", std::string(version()));
   file->set_attribute("git_commit", std::string(git_commit()));
@@ -114,6 +120,11 @@ void Simulation::Impl::write_history() {
     const ContactStats& st = c.stats();
     row.insert(row.end(), {static_cast<double>(st.in_contact), st.work,
                            static_cast<double>(st.links_active), st.bonded_area, st.adhesion_work});
+  }
+  for (const ReactionSet& r : model.reaction_sets) {
+    const ReactionHistory h = reaction_history(model, r);
+    row.insert(row.end(), {h.force.x(), h.force.y(), h.force.z(), h.displacement.x(),
+                           h.displacement.y(), h.displacement.z()});
   }
   file->append_history(row);
 }

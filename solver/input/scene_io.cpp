@@ -509,12 +509,74 @@ const BodySpec* find_body(const Scene& scene, const std::string& name) {
 
 // ---------------------------------------------------------------- boundaries
 
+constexpr NameTable<HistoryInterpolation, 2> interpolation_names{{
+    {HistoryInterpolation::linear, "linear"},
+    {HistoryInterpolation::smooth_step, "smooth-step"},
+}};
+static_assert(names_in_order(interpolation_names));
+
+// The schema checks the types and signs; here: as many velocities as times,
+// times strictly increasing.
+VelocityHistory parse_velocity_history(const json& j, const std::string& p, Problems& problems) {
+  VelocityHistory h;
+  h.time = j.at("time").get<std::vector<double>>();
+  for (const json& v : j.at("velocity")) h.velocity.push_back(vec3(v));
+  h.interpolation =
+      from_name(interpolation_names, value_or(j, "interpolation", std::string("linear")));
+  if (h.time.size() != h.velocity.size()) {
+    problems.add(at(p, "velocity"), "has " + std::to_string(h.velocity.size()) +
+                                        " rows but time has " + std::to_string(h.time.size()) +
+                                        ": one velocity [vx, vy, vz] (m/s) per time (s)");
+  }
+  for (std::size_t k = 1; k < h.time.size(); ++k) {
+    if (!(h.time[k] > h.time[k - 1])) {
+      problems.add(at(at(p, "time"), k), "must exceed the time before it (" +
+                                             std::to_string(h.time[k - 1]) +
+                                             " s): times of a history increase strictly");
+    }
+  }
+  return h;
+}
+
+json velocity_history_to_json(const VelocityHistory& h) {
+  json velocity = json::array();
+  for (const Vec3& v : h.velocity) velocity.push_back(to_json_vec(v));
+  return {{"time", h.time},
+          {"velocity", velocity},
+          {"interpolation", name_of(interpolation_names, h.interpolation)}};
+}
+
 BoundarySpec parse_boundary(const json& j, const std::string& p, const Scene& scene,
                             Problems& problems) {
   BoundarySpec bc;
+  bc.name = value_or(j, "name", std::string());
   bc.body = j.at("body").get<std::string>();
   bc.type = from_name(boundary_type_names, j.at("type").get<std::string>());
   if (const auto v = j.find("velocity"); v != j.end()) bc.velocity = vec3(*v);
+  if (const auto h = j.find("history"); h != j.end()) {
+    bc.history = parse_velocity_history(*h, at(p, "history"), problems);
+  }
+  if (bc.type == BoundaryType::velocity && !j.contains("velocity") && !bc.history) {
+    problems.add(at(p, "velocity"),
+                 "required field is missing: a velocity condition needs `velocity` (constant, "
+                 "m/s) or `history` (tabulated, s and m/s)");
+  }
+  if (j.contains("velocity") && bc.history) {
+    problems.add(at(p, "history"),
+                 "give either `velocity` (constant) or `history` (tabulated), not both");
+  }
+  const json& components = member_or_empty(j, "components");
+  if (!components.empty()) {
+    bc.components = {false, false, false};
+    for (std::size_t k = 0; k < components.size(); ++k) {
+      const std::string c = components[k].get<std::string>();
+      const std::size_t index = static_cast<std::size_t>(c[0] - 'x');
+      if (bc.components[index]) {
+        problems.add(at(at(p, "components"), k), "component " + c + " is listed twice");
+      }
+      bc.components[index] = true;
+    }
+  }
   const std::string on = j.at("on").get<std::string>();
   if (bc.type == BoundaryType::symmetry && on == "curved") {
     problems.add(at(p, "on"), "a symmetry condition needs a plane, not the curved surface");
@@ -534,6 +596,19 @@ BoundarySpec parse_boundary(const json& j, const std::string& p, const Scene& sc
     if (bc.velocity.y() != 0.0) {
       problems.add(p + "/velocity/1", "must be 0 for fe-axisym bodies: [vr, 0, vz] (m/s)");
     }
+    if (bc.history) {
+      for (std::size_t k = 0; k < bc.history->velocity.size(); ++k) {
+        if (bc.history->velocity[k].y() != 0.0) {
+          problems.add(at(at(at(p, "history"), "velocity"), k) + "/1",
+                       "must be 0 for fe-axisym bodies: [vr, 0, vz] (m/s)");
+        }
+      }
+    }
+    if (!components.empty() && bc.components[1]) {
+      problems.add(at(p, "components"),
+                   "fe-axisym bodies have components x (radial) and z (axial), not y");
+    }
+    bc.components[1] = false;
   } else {
     const std::optional<std::uint32_t> bit = boundary_bit(boundary_names_3d, on);
     if (!bit) {
@@ -559,7 +634,24 @@ json boundary_to_json(const BoundarySpec& bc, const Scene& scene) {
     lookup(boundary_names_3d);
   }
   json j{{"body", bc.body}, {"on", on}, {"type", name_of(boundary_type_names, bc.type)}};
-  if (bc.type == BoundaryType::velocity) j["velocity"] = to_json_vec(bc.velocity);
+  if (!bc.name.empty()) j["name"] = bc.name;
+  if (bc.type == BoundaryType::velocity) {
+    if (bc.history) {
+      j["history"] = velocity_history_to_json(*bc.history);
+    } else {
+      j["velocity"] = to_json_vec(bc.velocity);
+    }
+    // Only a restriction is written (all components is the default).
+    const bool axisym = body != nullptr && is_axisymmetric(body->discretization);
+    json components = json::array();
+    bool all = true;
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (axisym && c == 1) continue;
+      if (bc.components[c]) components.push_back(std::string(1, static_cast<char>('x' + c)));
+      all = all && bc.components[c];
+    }
+    if (!all) j["components"] = components;
+  }
   return j;
 }
 
@@ -969,8 +1061,17 @@ LoadedScene read_scene(const json& doc, const std::filesystem::path& base_dir) {
 
   const json& bcs = member_or_empty(doc, "boundary_conditions");
   for (std::size_t i = 0; i < bcs.size(); ++i) {
-    scene.boundaries.push_back(
-        parse_boundary(bcs[i], at("/boundary_conditions", i), scene, problems));
+    const std::string p = at("/boundary_conditions", i);
+    scene.boundaries.push_back(parse_boundary(bcs[i], p, scene, problems));
+    const std::string& name = scene.boundaries.back().name;
+    for (std::size_t k = 0; k < i && !name.empty(); ++k) {
+      if (scene.boundaries[k].name == name) {
+        problems.add(at(p, "name"), "duplicate boundary-condition name \"" + name +
+                                        "\" (also /boundary_conditions/" + std::to_string(k) +
+                                        "/name)");
+        break;
+      }
+    }
   }
   const json& interactions = member_or_empty(doc, "interactions");
   for (std::size_t i = 0; i < interactions.size(); ++i) {

@@ -14,6 +14,7 @@
 #include "solver/contact/contact_types.hpp"
 #include "solver/material/material.hpp"
 #include "solver/scene/fidelity.hpp"
+#include "solver/scene/velocity_history.hpp"
 #include "solver/sph/sph_body.hpp"
 #include "solver/sph/sph_particles.hpp"
 
@@ -83,11 +84,18 @@ enum class BoundaryType { fixed, symmetry, velocity, absorbing };
 // A condition on the nodes of one body that carry a boundary bit (mesh.hpp):
 // "x_min", "x_max", "y_min", "y_max", "z_min", "z_max", "curved"; in 2D
 // "axis" = x_min, "outer" = x_max, "bottom" = y_min, "top" = y_max.
+// Type velocity prescribes the `components` of the nodes' velocity: the
+// constant `velocity`, or the tabulated `history` when it is set. A named
+// condition's node set gets a reaction-force and displacement history in the
+// result file (simulation_output.cpp).
 struct BoundarySpec {
+  std::string name;  // empty: no reaction history
   std::string body;
   std::uint32_t on = 0;  // BoundaryBit mask (any bit matches)
   BoundaryType type = BoundaryType::fixed;
-  Vec3 velocity = Vec3::Zero();  // m/s, for type velocity
+  Vec3 velocity = Vec3::Zero();                      // m/s, for type velocity without a history
+  std::optional<VelocityHistory> history;            // m/s against s, user frame
+  std::array<bool, 3> components{true, true, true};  // x, y, z prescribed (type velocity)
 };
 
 enum class InteractionType { rigid_wall, contact };

@@ -578,6 +578,64 @@ TEST(SceneIo, bad_overrides_name_the_override) {
             std::string::npos);
 }
 
+// A velocity condition with a tabulated history on the 3D scene's substrate.
+json history_condition() {
+  return json::parse(R"({"body": "substrate", "on": "y_max", "type": "velocity", "name": "grip",
+    "components": ["x", "z"],
+    "history": {"time": [0, 1e-9, 5e-9], "velocity": [[0, 0, 0], [0, 0, 2], [0, 0, 2]]}})");
+}
+
+TEST(SceneIo, velocity_history_is_read) {
+  json doc = hex_scene();
+  doc["boundary_conditions"][3] = history_condition();
+  const Scene s = scene_from_json(doc);
+  const BoundarySpec& bc = s.boundaries[3];
+  EXPECT_EQ(bc.name, "grip");
+  EXPECT_EQ(bc.components, (std::array<bool, 3>{true, false, true}));
+  ASSERT_TRUE(bc.history.has_value());
+  EXPECT_EQ(bc.history->time, (std::vector<double>{0, 1e-9, 5e-9}));
+  EXPECT_EQ(bc.history->velocity[1], Vec3(0, 0, 2));
+  EXPECT_EQ(bc.history->interpolation, HistoryInterpolation::linear);
+}
+
+TEST(SceneIo, bad_velocity_histories_name_the_field) {
+  json doc = hex_scene();
+  doc["boundary_conditions"][3] = history_condition();
+  json d = doc;
+  d["boundary_conditions"][3]["history"]["time"] = {0, 2e-9, 2e-9};
+  expect_violation(d, "/boundary_conditions/3/history/time/2", "must exceed the time before it");
+  d = doc;
+  d["boundary_conditions"][3]["history"]["velocity"].push_back({0, 0, 1});
+  expect_violation(d, "/boundary_conditions/3/history/velocity", "has 4 rows but time has 3");
+  d = doc;
+  d["boundary_conditions"][3]["history"]["time"][0] = -1e-9;
+  expect_violation(d, "/boundary_conditions/3/history/time/0", ">= 0");
+  d = doc;
+  d["boundary_conditions"][3]["velocity"] = {0, 0, 1};
+  expect_violation(d, "/boundary_conditions/3/history", "not both");
+  d = doc;
+  d["boundary_conditions"][3]["history"]["interpolation"] = "cubic";
+  expect_violation(d, "/boundary_conditions/3/history/interpolation", "");
+  d = doc;
+  d["boundary_conditions"][3]["components"] = {"z", "z"};
+  expect_violation(d, "/boundary_conditions/3/components/1", "listed twice");
+  d = doc;
+  d["boundary_conditions"][2]["name"] = "grip";
+  expect_violation(d, "/boundary_conditions/3/name", "duplicate boundary-condition name");
+  d = doc;
+  d["boundary_conditions"][2]["components"] = {"x"};
+  expect_violation(d, "/boundary_conditions/2/components", "unknown field");
+}
+
+TEST(SceneIo, axisymmetric_velocity_history_has_no_y) {
+  json doc = axisym_scene();
+  doc["boundary_conditions"] = json::parse(R"([{"body": "particle", "on": "curved",
+    "type": "velocity", "components": ["y"],
+    "history": {"time": [0, 1e-9], "velocity": [[0, 0, 0], [0, 3, -1]]}}])");
+  expect_violation(doc, "/boundary_conditions/0/components", "not y");
+  expect_violation(doc, "/boundary_conditions/0/history/velocity/1/1", "must be 0 for fe-axisym");
+}
+
 // ---------------------------------------------------------------- resolved document
 
 void expect_same_scene(const Scene& a, const Scene& b) {
@@ -623,6 +681,14 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.boundaries[i].on, b.boundaries[i].on);
     EXPECT_EQ(a.boundaries[i].type, b.boundaries[i].type);
     EXPECT_EQ(a.boundaries[i].velocity, b.boundaries[i].velocity);
+    EXPECT_EQ(a.boundaries[i].name, b.boundaries[i].name);
+    EXPECT_EQ(a.boundaries[i].components, b.boundaries[i].components);
+    ASSERT_EQ(a.boundaries[i].history.has_value(), b.boundaries[i].history.has_value());
+    if (a.boundaries[i].history) {
+      EXPECT_EQ(a.boundaries[i].history->time, b.boundaries[i].history->time);
+      EXPECT_EQ(a.boundaries[i].history->velocity, b.boundaries[i].history->velocity);
+      EXPECT_EQ(a.boundaries[i].history->interpolation, b.boundaries[i].history->interpolation);
+    }
   }
   ASSERT_EQ(a.interactions.size(), b.interactions.size());
   for (std::size_t i = 0; i < a.interactions.size(); ++i) {
@@ -645,7 +711,12 @@ TEST(SceneIo, resolved_document_round_trips) {
   json axisym = axisym_scene();
   axisym["bodies"][0]["material"] = {{"base", "cu-deck"}, {"strength", {{"A", 100e6}}}};
   axisym["bodies"][0]["discretization"]["grading"] = {{"focus", {0, 0, 0}}, {"ratio", 1.2}};
-  axisym["boundary_conditions"] = {{{"body", "particle"}, {"on", "axis"}, {"type", "symmetry"}}};
+  axisym["boundary_conditions"] = json::parse(R"([
+    {"body": "particle", "on": "axis", "type": "symmetry", "name": "axis_set"},
+    {"body": "particle", "on": "curved", "type": "velocity", "name": "driven", "components": ["z"],
+     "history": {"time": [0, 1e-9, 2e-9], "velocity": [[0, 0, 0], [0, 0, -5], [1, 0, -5]],
+                 "interpolation": "smooth-step"}}
+  ])");
   axisym["output"] = {{"snapshot_count", 3}};
   for (const json& doc : {axisym, hex_scene()}) {
     const LoadedScene loaded = read_scene(doc);
