@@ -26,7 +26,8 @@ Field route(std::string path) {
   return {Field::Kind::route, std::move(path)};
 }
 
-class BadInput : public ::testing::Test {
+// Named like the other API suites (ctest -R api), not CamelCase.
+class api_bad_input : public ::testing::Test {
  protected:
   void SetUp() override {
     options_ = options_for(dir_);
@@ -100,7 +101,7 @@ json impact_campaign() {
   return c;
 }
 
-TEST_F(BadInput, malformed_json) {
+TEST_F(api_bad_input, malformed_json) {
   refused(post_text("{\"name\": \"x\", "), 400, at(""));
   refused(post_text("{\"name\": NaN}"), 400, at(""));
   refused(post_text(""), 400, at(""));
@@ -117,7 +118,7 @@ TEST_F(BadInput, malformed_json) {
   refused(post_text(twice), 400, at("/job/retries"));
 }
 
-TEST_F(BadInput, wrong_content_type) {
+TEST_F(api_bad_input, wrong_content_type) {
   const std::string body = small_campaign().dump();
   for (const char* type : {"text/plain", "application/json-patch+json", "application/jsonx",
                            "application/x-www-form-urlencoded", "multipart/form-data", "text/json",
@@ -128,7 +129,7 @@ TEST_F(BadInput, wrong_content_type) {
   refused(post_text(body, ""), 415, header("Content-Type"));
 }
 
-TEST_F(BadInput, wrong_types) {
+TEST_F(api_bad_input, wrong_types) {
   refused(post(json::array()), 422, at(""));
   refused(post(json(42)), 422, at(""));
   refused(post(with(small_campaign(), "/name", 12)), 422, at("/name"));
@@ -152,7 +153,7 @@ TEST_F(BadInput, wrong_types) {
           at("/base_scene/two_mass/adhesion/sigma_c"));
 }
 
-TEST_F(BadInput, negative_and_non_finite_values) {
+TEST_F(api_bad_input, negative_and_non_finite_values) {
   refused(post(with(small_campaign(), "/velocity/values/1", -0.4)), 422, at("/velocity/values/1"));
   refused(post(with(small_campaign(), "/G_c/values/0", -0.1)), 422, at("/G_c/values/0"));
   refused(post(with(small_campaign(), "/job/time_limit", 0)), 422, at("/job/time_limit"));
@@ -169,7 +170,7 @@ TEST_F(BadInput, negative_and_non_finite_values) {
 
 // Numbers beyond double range are refused where they stand, not with the
 // JSON library's "[json.exception.out_of_range.406]".
-TEST_F(BadInput, numbers_beyond_double_range_name_their_field) {
+TEST_F(api_bad_input, numbers_beyond_double_range_name_their_field) {
   const auto replaced = [](const std::string& pointer, const std::string& number) {
     std::string text = with(small_campaign(), pointer, 12345.678).dump();
     text.replace(text.find("12345.678"), 9, number);
@@ -189,7 +190,7 @@ TEST_F(BadInput, numbers_beyond_double_range_name_their_field) {
   EXPECT_NE(r->body.find("finite"), std::string::npos) << r->body;
 }
 
-TEST_F(BadInput, values_out_of_bounds) {
+TEST_F(api_bad_input, values_out_of_bounds) {
   refused(post(with(small_campaign(), "/priority", 1001)), 422, at("/priority"));
   refused(post(with(small_campaign(), "/velocity/scale", 1e7)), 422, at("/velocity/scale"));
   refused(post(with(small_campaign(), "/refinement", {{"tolerance", 0}})), 422,
@@ -216,7 +217,7 @@ TEST_F(BadInput, values_out_of_bounds) {
   refused(post(drop), 422, at("/D_adh_max/values/0"));
 }
 
-TEST_F(BadInput, missing_and_unknown_fields) {
+TEST_F(api_bad_input, missing_and_unknown_fields) {
   json c = small_campaign();
   c.erase("velocity");
   refused(post(c), 422, at("/velocity"));
@@ -227,7 +228,7 @@ TEST_F(BadInput, missing_and_unknown_fields) {
   refused(post(both), 422, at("/velocity"));
 }
 
-TEST_F(BadInput, axis_pointers) {
+TEST_F(api_bad_input, axis_pointers) {
   refused(post(with(small_campaign(), "/velocity/pointer", "/nothing/here")), 422,
           at("/velocity/pointer"));
   refused(post(with(small_campaign(), "/G_c/pointer", "/two_mass/V0")), 422, at("/G_c/pointer"));
@@ -238,7 +239,7 @@ TEST_F(BadInput, axis_pointers) {
   refused(post(f), 422, at("/fields/0/values"));
 }
 
-TEST_F(BadInput, unknown_material_and_material_paths) {
+TEST_F(api_bad_input, unknown_material_and_material_paths) {
   json c = impact_campaign();
   const std::string material = "/base_scene/particle_impact/particle/material";
   c["base_scene"]["particle_impact"]["particle"]["material"] = "unobtainium";
@@ -262,7 +263,7 @@ TEST_F(BadInput, unknown_material_and_material_paths) {
   refused(post(c), 422, at("/base_scene"));
 }
 
-TEST_F(BadInput, oversized_grid_and_body) {
+TEST_F(api_bad_input, oversized_grid_and_body) {
   json big = small_campaign();
   big["velocity"] = {{"range", {{"from", 0.0}, {"to", 1e6}, {"step", 1e-3}}}};
   refused(post(big), 422, at("/velocity/range"));
@@ -309,7 +310,7 @@ std::string deepest_allowed(const std::string& base, const std::string& token) {
   return p;
 }
 
-TEST_F(BadInput, nesting_deeper_than_64_levels) {
+TEST_F(api_bad_input, nesting_deeper_than_64_levels) {
   const std::string arrays = deepest_allowed("/base_scene", "/0");
   auto r = post_text(nested_base_scene(65));
   refused(r, 400, at(arrays));
@@ -330,7 +331,7 @@ TEST_F(BadInput, nesting_deeper_than_64_levels) {
   refused(post_text(text), 400, at(deepest_allowed("/tags/0", "/0")));
 }
 
-TEST_F(BadInput, materials_inside_field_values_name_no_file) {
+TEST_F(api_bad_input, materials_inside_field_values_name_no_file) {
   json c = impact_campaign();
   const std::string file = std::string(SPLAT_SOURCE_DIR) + "/materials/cu-thesis.json";
   for (const std::string& path : {std::string("/etc/passwd"), file}) {
@@ -361,7 +362,7 @@ TEST_F(BadInput, materials_inside_field_values_name_no_file) {
   refused(post(c), 422, at("/fields/0/values/0"));
 }
 
-TEST_F(BadInput, job_threads) {
+TEST_F(api_bad_input, job_threads) {
   refused(post(with(small_campaign(), "/job/threads", 100000)), 422, at("/job/threads"));
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   refused(post(with(small_campaign(), "/job/threads", cores + 1)), 422, at("/job/threads"));
@@ -372,7 +373,7 @@ TEST_F(BadInput, job_threads) {
   refused(post(with(small_campaign(), "/job/threads", 1.5)), 422, at("/job/threads"));
 }
 
-TEST_F(BadInput, invalid_utf8) {
+TEST_F(api_bad_input, invalid_utf8) {
   refused(post_text("{\"name\": \"caf\xc3\x28\"}"), 400, at(""));
   refused(post_text("{\"name\": \"x\xff\"}"), 400, at(""));
   refused(post_text("\xef\xbb\xbf\xff{}"), 400, at(""));
@@ -387,7 +388,7 @@ TEST_F(BadInput, invalid_utf8) {
   refused(r, 404, route("/api/v1/nothing\xef\xbf\xbd"));
 }
 
-TEST_F(BadInput, unicode_where_names_are_ascii) {
+TEST_F(api_bad_input, unicode_where_names_are_ascii) {
   refused(post(with(small_campaign(), "/name", "caf\xc3\xa9")), 422, at("/name"));
   refused(post(with(small_campaign(), "/name", "\xf0\x9f\x9a\x80")), 422, at("/name"));
   refused(post(with(small_campaign(), "/name", "a\xe2\x80\x8b")), 422, at("/name"));  // U+200B
@@ -397,7 +398,7 @@ TEST_F(BadInput, unicode_where_names_are_ascii) {
           at("/velocity/pointer"));
 }
 
-TEST_F(BadInput, unknown_routes_and_ids) {
+TEST_F(api_bad_input, unknown_routes_and_ids) {
   refused(get("/api/v1/nothing"), 404, route("/api/v1/nothing"));
   refused(get("/api/v2/campaigns"), 404, route("/api/v2/campaigns"));
   refused(get("/api/v1/campaigns/999"), 404, param("id"));
@@ -416,7 +417,7 @@ TEST_F(BadInput, unknown_routes_and_ids) {
 }
 
 // A path that exists asked with a method it does not serve: 405 and Allow.
-TEST_F(BadInput, wrong_methods_get_405_with_allow) {
+TEST_F(api_bad_input, wrong_methods_get_405_with_allow) {
   httplib::Client c = server_->client();
   const auto expect_405 = [&](const httplib::Result& r, const std::string& path,
                               const std::string& allow) {
@@ -433,7 +434,7 @@ TEST_F(BadInput, wrong_methods_get_405_with_allow) {
   expect_405(c.Patch(job.c_str()), job, "GET");
 }
 
-TEST_F(BadInput, bad_query_parameters) {
+TEST_F(api_bad_input, bad_query_parameters) {
   refused(get("/api/v1/campaigns?page_size=0"), 400, param("page_size"));
   refused(get("/api/v1/campaigns?page_size=100000"), 400, param("page_size"));
   refused(get("/api/v1/campaigns?page_size=ten"), 400, param("page_size"));
@@ -450,7 +451,7 @@ TEST_F(BadInput, bad_query_parameters) {
   refused(get("/api/v1/windows?material_pair=a/a&material_pair=b/b"), 400, param("material_pair"));
 }
 
-TEST_F(BadInput, paging_tokens) {
+TEST_F(api_bad_input, paging_tokens) {
   refused(get("/api/v1/campaigns?page_token=zzz"), 400, param("page_token"));
   refused(get("/api/v1/campaigns?page_token="), 400, param("page_token"));
   refused(get("/api/v1/campaigns?page_token=o5"), 400, param("page_token"));  // a jobs token
@@ -459,7 +460,7 @@ TEST_F(BadInput, paging_tokens) {
   refused(get("/api/v1/campaigns/1/jobs?page_token=b1"), 400, param("page_token"));
 }
 
-TEST_F(BadInput, injection_strings_in_filters) {
+TEST_F(api_bad_input, injection_strings_in_filters) {
   refused(get("/api/v1/windows?name=%27%20OR%20%271%27%3D%271"), 400, param("name"));
   refused(get("/api/v1/windows?name=x%3BDROP%20TABLE%20campaigns%3B--"), 400, param("name"));
   refused(get("/api/v1/windows?name=%00"), 400, param("name"));
@@ -472,7 +473,7 @@ TEST_F(BadInput, injection_strings_in_filters) {
 
 // Traversal through the static files and through path parameters: 404,
 // never a file of the server's.
-TEST_F(BadInput, path_traversal_attempts) {
+TEST_F(api_bad_input, path_traversal_attempts) {
   httplib::Client c = server_->client();
   for (const char* path :
        {"/../../../../etc/passwd", "/%2e%2e/%2e%2e/%2e%2e/etc/passwd",
@@ -493,7 +494,7 @@ TEST_F(BadInput, path_traversal_attempts) {
 // 100,000 nested brackets (200 KB, under the default 1 MiB body limit) are
 // refused with a 400 before anything recurses through them, and the server
 // answers the next request.
-TEST(api_bad_input, a_hundred_thousand_nested_brackets_leave_the_server_alive) {
+TEST(api_bad_input_limits, a_hundred_thousand_nested_brackets_leave_the_server_alive) {
   TempDir dir;
   api::ServerOptions o = options_for(dir);
   o.run_campaigns = false;
