@@ -24,6 +24,7 @@
 #include "api/runner.hpp"
 #include "campaign/queries.hpp"
 #include "campaign/sha256.hpp"
+#include "campaign/sqlite.hpp"
 #include "campaign/store.hpp"
 #include "campaign/window_rows.hpp"
 #include "solver/build_info.hpp"
@@ -480,6 +481,21 @@ struct Server::Impl {
         write_problem(req, res,
                       {422, "invalid-body", "Invalid campaign", "the body breaks the rules below",
                        errors_of(e.violations())});
+      } catch (const campaign::SqliteError& e) {
+        // A full disk (or an I/O error) under the store is the server's
+        // state, not a bug: 503, nothing stored, try again later.
+        const int primary = e.code() & 0xff;
+        if (primary != SQLITE_FULL && primary != SQLITE_IOERR) {
+          write_problem(req, res,
+                        {500, "internal", "Internal Server Error", e.what(), json::array()});
+          return;
+        }
+        res.set_header("Retry-After", "60");
+        write_problem(req, res,
+                      {503, "store-unavailable", "Store unavailable",
+                       std::string("the store cannot take writes now (") + e.what() +
+                           "); nothing was stored: try again when the server has room",
+                       json::array()});
       } catch (const std::exception& e) {
         write_problem(req, res,
                       {500, "internal", "Internal Server Error", e.what(), json::array()});
