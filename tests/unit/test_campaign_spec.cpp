@@ -270,16 +270,14 @@ TEST(campaign_spec, a_job_value_the_scene_refuses_names_the_campaign_field) {
   }
 }
 
-// A range that would list more speeds than memory holds (or never move from
-// `from`) is refused before anything is listed.
-TEST(campaign_spec, a_range_without_end_is_refused) {
+// A range of more than 1e6 speeds is refused before anything is listed.
+// (Ranges without end, whose listing would exhaust memory where the check is
+// missing, are cli.a_velocity_range_without_end_is_refused_at_its_field, run
+// under an address-space limit.)
+TEST(campaign_spec, a_range_of_more_than_a_million_speeds_is_refused) {
   json d = two_mass_campaign();
-  d["velocity"]["range"] = {{"from", 1000.0}, {"to", 1001.0}, {"step", 1e-20}};
+  d["velocity"]["range"] = {{"from", 0.0}, {"to", 2e6}, {"step", 1.0}};
   EXPECT_TRUE(has(messages(d), "/velocity/range: lists more than 1e6 speeds")) << messages(d)[0];
-  d["velocity"]["range"] = {{"from", 1e20}, {"to", 1e20}, {"step", 1.0}};
-  EXPECT_TRUE(has(messages(d), "/velocity/range: lists more than 1e6 speeds")) << messages(d)[0];
-  d["velocity"]["range"] = {{"from", 0.0}, {"to", 1e300}, {"step", 1.0}};
-  EXPECT_TRUE(has(messages(d), "/velocity/range: lists more than 1e6 speeds"));
   d["velocity"]["range"] = {{"from", 0.2}, {"to", 1.0}, {"step", 0.2}};
   EXPECT_EQ(read_campaign(d).velocities.size(), 5u);
 }
