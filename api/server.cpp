@@ -24,6 +24,7 @@
 #include "api/runner.hpp"
 #include "campaign/queries.hpp"
 #include "campaign/sha256.hpp"
+#include "campaign/sqlite.hpp"
 #include "campaign/store.hpp"
 #include "campaign/window_rows.hpp"
 #include "solver/build_info.hpp"
@@ -221,15 +222,35 @@ std::optional<std::int64_t> parse_int(const std::string& s) {
   return v;
 }
 
-std::int64_t path_id(const httplib::Request& req) {
-  const auto v = parse_int(req.matches[1]);
-  if (!v || *v <= 0)
-    fail(404, "not-found", "Not Found", "no campaign " + std::string(req.matches[1]));
-  return *v;
-}
-
 json param_error(const std::string& name, const std::string& detail) {
   return json::array({{{"parameter", name}, {"detail", detail}}});
+}
+
+json header_error(const std::string& name, const std::string& detail) {
+  return json::array({{{"header", name}, {"detail", detail}}});
+}
+
+json body_too_large(std::size_t limit) {
+  return json::array(
+      {{{"pointer", ""}, {"detail", "more than " + std::to_string(limit) + " bytes"}}});
+}
+
+// `application/json`, in any case, with or without parameters (charset).
+bool is_json_media_type(const std::string& content_type) {
+  std::string t = content_type.substr(0, content_type.find(';'));
+  while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.pop_back();
+  return t.size() == 16 && starts_with_ignoring_case(t, "application/json");
+}
+
+// A path parameter ({id}, {name}) that names nothing: 404 naming it.
+[[noreturn]] void no_such(const std::string& parameter, const std::string& what) {
+  fail(404, "not-found", "Not Found", "no " + what, param_error(parameter, "no " + what));
+}
+
+std::int64_t path_id(const httplib::Request& req) {
+  const auto v = parse_int(req.matches[1]);
+  if (!v || *v <= 0) no_such("id", "campaign " + std::string(req.matches[1]));
+  return *v;
 }
 
 int page_size_of(const httplib::Request& req, const ServerOptions& o) {
@@ -435,18 +456,24 @@ struct Server::Impl {
 
   campaign::CampaignRecord campaign_or_404(std::int64_t id) {
     auto c = store.campaign(id);
-    if (!c) fail(404, "not-found", "Not Found", "no campaign " + std::to_string(id));
+    if (!c) no_such("id", "campaign " + std::to_string(id));
     return *c;
   }
 
   // --- routes ----------------------------------------------------------------
 
+  // A handler that answers every error as a problem document. `parameters`
+  // lists the query parameters the route reads; any other one, or one given
+  // twice, is refused (a misspelt filter would otherwise be ignored and
+  // answer with everything). nullopt: not checked.
   template <class F>
-  httplib::Server::Handler guarded(F f) {
-    return [this, f](const httplib::Request& req, httplib::Response& res) {
+  httplib::Server::Handler guarded(
+      F f, std::optional<std::vector<std::string>> parameters = std::vector<std::string>{}) {
+    return [this, f, parameters](const httplib::Request& req, httplib::Response& res) {
       ++requests;
       try {
         check_parameters_utf8(req);
+        if (parameters) check_known_parameters(req, *parameters);
         f(req, res);
       } catch (const Problem& p) {
         write_problem(req, res, p);
@@ -454,6 +481,21 @@ struct Server::Impl {
         write_problem(req, res,
                       {422, "invalid-body", "Invalid campaign", "the body breaks the rules below",
                        errors_of(e.violations())});
+      } catch (const campaign::SqliteError& e) {
+        // A full disk (or an I/O error) under the store is the server's
+        // state, not a bug: 503, nothing stored, try again later.
+        const int primary = e.code() & 0xff;
+        if (primary != SQLITE_FULL && primary != SQLITE_IOERR) {
+          write_problem(req, res,
+                        {500, "internal", "Internal Server Error", e.what(), json::array()});
+          return;
+        }
+        res.set_header("Retry-After", "60");
+        write_problem(req, res,
+                      {503, "store-unavailable", "Store unavailable",
+                       std::string("the store cannot take writes now (") + e.what() +
+                           "); nothing was stored: try again when the server has room",
+                       json::array()});
       } catch (const std::exception& e) {
         write_problem(req, res,
                       {500, "internal", "Internal Server Error", e.what(), json::array()});
@@ -467,6 +509,25 @@ struct Server::Impl {
         fail(400, "invalid-parameter", "Invalid query parameter",
              "query parameters must be UTF-8 (percent-encoded)",
              param_error(name, "not valid UTF-8"));
+      }
+    }
+  }
+
+  static void check_known_parameters(const httplib::Request& req,
+                                     const std::vector<std::string>& known) {
+    std::string list;
+    for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+    for (const auto& [name, value] : req.params) {
+      if (std::find(known.begin(), known.end(), name) == known.end()) {
+        fail(400, "invalid-parameter", "Invalid query parameter",
+             "unknown query parameter '" + name + "'",
+             param_error(name, list.empty() ? "this route takes no query parameters"
+                                            : "unknown here; this route takes " + list));
+      }
+      if (req.params.count(name) > 1) {
+        fail(400, "invalid-parameter", "Invalid query parameter",
+             "query parameter '" + name + "' given more than once",
+             param_error(name, "given more than once; give it once"));
       }
     }
   }
@@ -491,12 +552,13 @@ struct Server::Impl {
   // methods it does serve (a path that does not exist stays 404).
   void refuse_other_methods() {
     for (const auto& [pattern, methods] : allowed) {
-      const httplib::Server::Handler refuse =
-          guarded([methods = methods](const httplib::Request& req, httplib::Response& res) {
+      const httplib::Server::Handler refuse = guarded(
+          [methods = methods](const httplib::Request& req, httplib::Response& res) {
             res.set_header("Allow", methods);
             fail(405, "method-not-allowed", "Method Not Allowed",
                  req.method + " is not served on " + req.path + "; allowed: " + methods);
-          });
+          },
+          std::nullopt);
       const auto serves = [&](const char* m) { return methods.find(m) != std::string::npos; };
       if (!serves("GET")) http.Get(pattern, refuse);
       if (!serves("POST")) http.Post(pattern, refuse);
@@ -535,15 +597,27 @@ struct Server::Impl {
     // Statuses the library answers itself (unknown route, body too large, ...)
     // get a problem document too.
     http.set_error_handler(httplib::Server::HandlerWithResponse(
-        [](const httplib::Request& req, httplib::Response& res) {
+        [max_body = o.max_body_bytes](const httplib::Request& req, httplib::Response& res) {
           if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
           std::string detail;
+          json errors = json::array();
           if (res.status == 404) detail = "no resource at " + req.path;
-          if (res.status == 413) detail = "the request body is larger than this server accepts";
+          if (res.status == 413) {
+            detail = "the request body is larger than the " + std::to_string(max_body) +
+                     " bytes this server accepts";
+            errors = body_too_large(max_body);
+          }
           if (res.status == 405) detail = "method " + req.method + " is not allowed here";
+          // A multipart body the library could not read: the API takes JSON only.
+          if (res.status == 400 &&
+              starts_with_ignoring_case(req.get_header_value("Content-Type"), "multipart/")) {
+            res.status = 415;
+            detail = "send the campaign as `Content-Type: application/json`";
+            errors = header_error("Content-Type", "multipart bodies are not taken; send JSON");
+          }
           write_problem(req, res,
                         {res.status, res.status == 404 ? "not-found" : "",
-                         reason_phrase(res.status), detail, json::array()});
+                         reason_phrase(res.status), detail, errors});
           return httplib::Server::HandlerResponse::Handled;
         }));
     http.set_exception_handler(
@@ -571,8 +645,7 @@ struct Server::Impl {
           }
           reply_json(req, res, {{"materials", list}});
         }));
-    get(p + R"(/schemas/([A-Za-z0-9_.-]+))",
-        guarded([](const httplib::Request& req, httplib::Response& res) {
+    get(p + R"(/schemas/([^/]+))", guarded([](const httplib::Request& req, httplib::Response& res) {
           std::string name = req.matches[1];
           for (const char* suffix : {".schema.json", ".json"}) {
             const std::string s = suffix;
@@ -583,90 +656,103 @@ struct Server::Impl {
           }
           const auto names = splat::schema_names();
           if (std::find(names.begin(), names.end(), name) == names.end()) {
-            fail(404, "not-found", "Not Found", "no schema '" + name + "'");
+            no_such("name", "schema '" + name + "'");
           }
           reply_json(req, res, splat::schema_document(name));
         }));
-    post(p + "/campaigns", guarded([this](const httplib::Request& req, httplib::Response& res) {
-           submit(req, res);
-         }));
-    get(p + "/campaigns", guarded([this](const httplib::Request& req, httplib::Response& res) {
-          const int size = page_size_of(req, o);
-          const std::int64_t before = page_token_of(req, 'b');
-          const auto page = campaign::campaigns_page(store, before, size + 1);
-          json list = json::array();
-          for (std::size_t i = 0; i < page.size() && i < std::size_t(size); ++i) {
-            list.push_back(campaign_doc(page[i], false));
-          }
-          json next = nullptr;
-          if (page.size() > std::size_t(size))
-            next = "b" + std::to_string(page[std::size_t(size) - 1].id);
-          reply_json(req, res, {{"campaigns", list}, {"next_page_token", next}});
-        }));
-    get(p + R"(/campaigns/([0-9]+))",
+    // Parameters checked in submit, after the media type (a form body would
+    // otherwise be read as parameters).
+    post(p + "/campaigns",
+         guarded([this](const httplib::Request& req, httplib::Response& res) { submit(req, res); },
+                 std::nullopt));
+    get(p + "/campaigns",
+        guarded(
+            [this](const httplib::Request& req, httplib::Response& res) {
+              const int size = page_size_of(req, o);
+              const std::int64_t before = page_token_of(req, 'b');
+              const auto page = campaign::campaigns_page(store, before, size + 1);
+              json list = json::array();
+              for (std::size_t i = 0; i < page.size() && i < std::size_t(size); ++i) {
+                list.push_back(campaign_doc(page[i], false));
+              }
+              json next = nullptr;
+              if (page.size() > std::size_t(size))
+                next = "b" + std::to_string(page[std::size_t(size) - 1].id);
+              reply_json(req, res, {{"campaigns", list}, {"next_page_token", next}});
+            },
+            {{"page_size", "page_token"}}));
+    get(p + R"(/campaigns/([^/]+))",
         guarded([this](const httplib::Request& req, httplib::Response& res) {
           reply_json(req, res, campaign_doc(campaign_or_404(path_id(req)), true));
         }));
-    post(p + R"(/campaigns/([0-9]+)/cancel)",
+    post(p + R"(/campaigns/([^/]+)/cancel)",
          guarded([this](const httplib::Request& req, httplib::Response& res) {
            const std::int64_t id = path_id(req);
            campaign_or_404(id);
            const CancelResult r = runner.cancel(id);
-           if (r == CancelResult::unknown) fail(404, "not-found", "Not Found", "no campaign");
+           if (r == CancelResult::unknown) no_such("id", "campaign " + std::to_string(id));
            if (r == CancelResult::already_ended) {
              fail(409, "campaign-finished", "Campaign already finished",
                   "campaign " + std::to_string(id) + " has finished; nothing to cancel");
            }
            reply_json(req, res, campaign_doc(campaign_or_404(id), false), 202);
          }));
-    get(p + R"(/campaigns/([0-9]+)/jobs)",
-        guarded([this](const httplib::Request& req, httplib::Response& res) {
-          const std::int64_t id = path_id(req);
-          campaign_or_404(id);
-          const int size = page_size_of(req, o);
-          const std::int64_t offset = page_token_of(req, 'o');
-          std::optional<campaign::JobState> state;
-          if (req.has_param("state")) {
-            const std::string s = req.get_param_value("state");
-            try {
-              state = campaign::job_state_from_string(s);
-            } catch (const std::exception&) {
-              fail(400, "invalid-parameter", "Invalid query parameter",
-                   "state must be one of queued, running, succeeded, failed, cancelled, "
-                   "timed-out",
-                   param_error("state", "unknown job state '" + s + "'"));
-            }
-          }
-          const auto rows = campaign::campaign_jobs(store, id, state, offset, size + 1);
-          json list = json::array();
-          for (std::size_t i = 0; i < rows.size() && i < std::size_t(size); ++i) {
-            list.push_back(job_row(rows[i]));
-          }
-          json next = nullptr;
-          if (rows.size() > std::size_t(size)) next = "o" + std::to_string(offset + size);
-          reply_json(req, res, {{"campaign_id", id}, {"jobs", list}, {"next_page_token", next}});
-        }));
-    get(p + R"(/campaigns/([0-9]+)/windows)",
-        guarded([this](const httplib::Request& req, httplib::Response& res) {
-          const std::int64_t id = path_id(req);
-          campaign_or_404(id);
-          reply_windows(req, res, store.windows(id), {{"campaign_id", id}});
-        }));
-    get(p + "/windows", guarded([this](const httplib::Request& req, httplib::Response& res) {
-          std::vector<campaign::WindowRecord> all;
-          json ids = json::array();
-          for (const campaign::CampaignRecord& c : store.campaigns()) {
-            if (!matches_filters(req, c)) continue;
-            ids.push_back(c.id);
-            for (auto& w : store.windows(c.id)) all.push_back(std::move(w));
-          }
-          reply_windows(req, res, all, {{"campaign_ids", ids}});
-        }));
-    get(p + R"(/jobs/([0-9a-f]{64}))",
+    get(p + R"(/campaigns/([^/]+)/jobs)",
+        guarded(
+            [this](const httplib::Request& req, httplib::Response& res) {
+              const std::int64_t id = path_id(req);
+              campaign_or_404(id);
+              const int size = page_size_of(req, o);
+              const std::int64_t offset = page_token_of(req, 'o');
+              std::optional<campaign::JobState> state;
+              if (req.has_param("state")) {
+                const std::string s = req.get_param_value("state");
+                try {
+                  state = campaign::job_state_from_string(s);
+                } catch (const std::exception&) {
+                  fail(400, "invalid-parameter", "Invalid query parameter",
+                       "state must be one of queued, running, succeeded, failed, cancelled, "
+                       "timed-out",
+                       param_error("state", "unknown job state '" + s + "'"));
+                }
+              }
+              const auto rows = campaign::campaign_jobs(store, id, state, offset, size + 1);
+              json list = json::array();
+              for (std::size_t i = 0; i < rows.size() && i < std::size_t(size); ++i) {
+                list.push_back(job_row(rows[i]));
+              }
+              json next = nullptr;
+              if (rows.size() > std::size_t(size)) next = "o" + std::to_string(offset + size);
+              reply_json(req, res,
+                         {{"campaign_id", id}, {"jobs", list}, {"next_page_token", next}});
+            },
+            {{"state", "page_size", "page_token"}}));
+    get(p + R"(/campaigns/([^/]+)/windows)",
+        guarded(
+            [this](const httplib::Request& req, httplib::Response& res) {
+              const std::int64_t id = path_id(req);
+              campaign_or_404(id);
+              reply_windows(req, res, store.windows(id), {{"campaign_id", id}});
+            },
+            {{"format"}}));
+    get(p + "/windows", guarded(
+                            [this](const httplib::Request& req, httplib::Response& res) {
+                              check_name_filter(req);
+                              std::vector<campaign::WindowRecord> all;
+                              json ids = json::array();
+                              for (const campaign::CampaignRecord& c : store.campaigns()) {
+                                if (!matches_filters(req, c)) continue;
+                                ids.push_back(c.id);
+                                for (auto& w : store.windows(c.id)) all.push_back(std::move(w));
+                              }
+                              reply_windows(req, res, all, {{"campaign_ids", ids}});
+                            },
+                            {{"format", "material_pair", "name", "tag"}}));
+    get(p + R"(/jobs/([^/]+))",
         guarded([this](const httplib::Request& req, httplib::Response& res) {
           reply_json(req, res, job_doc(req.matches[1]));
         }));
-    get(p + R"(/jobs/([0-9a-f]{64})/result\.h5)",
+    get(p + R"(/jobs/([^/]+)/result\.h5)",
         guarded([this](const httplib::Request& req, httplib::Response& res) {
           send_result_file(req, res);
         }));
@@ -677,6 +763,20 @@ struct Server::Impl {
     if (!o.vendor_dir.empty()) {
       http.set_mount_point("/vendor/chart.js", (o.vendor_dir / "chart.js" / "dist").string());
     }
+  }
+
+  // Campaign names follow the campaign schema's pattern: a filter that breaks
+  // it can match nothing and is a mistake (or an injection attempt).
+  static void check_name_filter(const httplib::Request& req) {
+    if (!req.has_param("name")) return;
+    const std::string n = req.get_param_value("name");
+    const bool ok = !n.empty() && std::all_of(n.begin(), n.end(), [](char ch) {
+      return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '.' || ch == '-';
+    });
+    if (ok) return;
+    fail(400, "invalid-parameter", "Invalid query parameter",
+         "name must be a campaign name: letters, digits, '_', '.' and '-'",
+         param_error("name", "not a campaign name (letters, digits, '_', '.', '-')"));
   }
 
   bool matches_filters(const httplib::Request& req, const campaign::CampaignRecord& c) {
@@ -777,7 +877,7 @@ struct Server::Impl {
 
   json job_doc(const std::string& hash) {
     const auto j = store.job(hash);
-    if (!j) fail(404, "not-found", "Not Found", "no job " + hash);
+    if (!j) no_such("id", "job " + hash);
     const auto r = store.result(hash);
     json uses = json::array();
     for (const campaign::JobUse& u : campaign::job_uses(store, hash)) {
@@ -851,7 +951,7 @@ struct Server::Impl {
 
   void send_result_file(const httplib::Request& req, httplib::Response& res) {
     const std::string hash = req.matches[1];
-    if (!store.job(hash)) fail(404, "not-found", "Not Found", "no job " + hash);
+    if (!store.job(hash)) no_such("id", "job " + hash);
     const auto r = store.result(hash);
     if (const auto why = missing_result_file(r)) fail(404, "not-found", "Not Found", *why);
     const auto f = result_file(r);
@@ -875,15 +975,17 @@ struct Server::Impl {
 
   void submit(const httplib::Request& req, httplib::Response& res) {
     const std::string type = req.get_header_value("Content-Type");
-    if (type.rfind("application/json", 0) != 0) {
+    if (!is_json_media_type(type)) {
       fail(415, "unsupported-media-type", "Unsupported Media Type",
-           "send the campaign as `Content-Type: application/json`");
+           "send the campaign as `Content-Type: application/json`",
+           header_error("Content-Type", "'" + type + "' is not application/json"));
     }
+    check_known_parameters(req, {});
     const json doc = parsed_body(req);
     const std::string key = req.get_header_value("Idempotency-Key");
     if (key.size() > 255) {
-      fail(400, "invalid-header", "Invalid header",
-           "Idempotency-Key is longer than 255 characters");
+      fail(400, "invalid-header", "Invalid header", "Idempotency-Key is longer than 255 characters",
+           header_error("Idempotency-Key", "at most 255 characters"));
     }
     const std::string body_hash = campaign::sha256_hex(campaign::canonical_text(doc));
     const auto replay = [&](std::int64_t id) {
@@ -943,7 +1045,8 @@ struct Server::Impl {
     if (req.body.size() > o.max_body_bytes) {
       fail(413, "body-too-large", "Content Too Large",
            "the request body is larger than the " + std::to_string(o.max_body_bytes) +
-               " bytes this server accepts");
+               " bytes this server accepts",
+           body_too_large(o.max_body_bytes));
     }
     if (const auto at = first_invalid_utf8(req.body)) {
       const std::string where = "byte " + std::to_string(*at) + " of the request body";
@@ -985,9 +1088,8 @@ struct Server::Impl {
         std::floor((r["to"].get<double>() - r["from"].get<double>()) / r["step"].get<double>()) + 1;
     if (n <= o.max_jobs_per_campaign) return;
     fail(422, "grid-too-large", "Grid too large",
-         "the velocity range alone has " + std::to_string(static_cast<long long>(n)) +
-             " points; this server takes at most " + std::to_string(o.max_jobs_per_campaign) +
-             " jobs per campaign",
+         "the velocity range alone has " + count_text(n) + " points; this server takes at most " +
+             std::to_string(o.max_jobs_per_campaign) + " jobs per campaign",
          json::array({{{"pointer", "/velocity/range"},
                        {"detail",
                         "more than " + std::to_string(o.max_jobs_per_campaign) + " velocities"}}}));
@@ -1006,19 +1108,45 @@ struct Server::Impl {
                                        "local jobs on"});
   }
 
+  // A count of points as text (a double: it may be beyond any integer).
+  static std::string count_text(double n) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.15g", n);
+    return text;
+  }
+
+  // Grid points x parameter sets + refinement budget within the limit; over
+  // it, each axis that multiplies the grid is named with its size.
   void check_grid(const campaign::CampaignSpec& spec) const {
     double grid = static_cast<double>(spec.velocities.size());
     for (const campaign::ParameterAxis& a : spec.axes) grid *= static_cast<double>(a.values.size());
     const double extra = spec.refinement ? spec.refinement->max_extra_jobs : 0;
     if (grid + extra <= o.max_jobs_per_campaign) return;
+    const std::string limit = std::to_string(o.max_jobs_per_campaign);
+    const auto sized = [&](const std::string& pointer, std::size_t n, const char* what) {
+      return json{{"pointer", pointer},
+                  {"detail", std::to_string(n) + " " + what + " of a grid over " + limit +
+                                 " jobs (grid points x parameter sets + refinement budget)"}};
+    };
+    json errors = json::array();
+    errors.push_back(
+        sized(spec.document["velocity"].contains("range") ? "/velocity/range" : "/velocity/values",
+              spec.velocities.size(), "velocities"));
+    std::size_t field = 0;
+    for (const campaign::ParameterAxis& a : spec.axes) {
+      const std::string at =
+          (a.is_field ? "/fields/" + std::to_string(field++) : "/" + a.name) + "/values";
+      errors.push_back(sized(at, a.values.size(), "values"));
+    }
+    if (spec.refinement) {
+      errors.push_back(sized("/refinement/max_extra_jobs",
+                             static_cast<std::size_t>(spec.refinement->max_extra_jobs),
+                             "refinement jobs"));
+    }
     fail(422, "grid-too-large", "Grid too large",
-         "the campaign asks for " + std::to_string(static_cast<long long>(grid)) +
-             " grid jobs and up to " + std::to_string(static_cast<long long>(extra)) +
-             " refinement jobs; this server takes at most " +
-             std::to_string(o.max_jobs_per_campaign) + " per campaign",
-         json::array({{{"pointer", ""},
-                       {"detail", "grid points x parameter sets + refinement/max_extra_jobs > " +
-                                      std::to_string(o.max_jobs_per_campaign)}}}));
+         "the campaign asks for " + count_text(grid) + " grid jobs and up to " + count_text(extra) +
+             " refinement jobs; this server takes at most " + limit + " per campaign",
+         errors);
   }
 
   // --- metrics ---------------------------------------------------------------

@@ -2,12 +2,16 @@
 // Runs one scene. Writes DIR/<scene>.h5 (+ .xmf) and DIR/<scene>.summary.json
 // and prints the summary (schemas/result.schema.json with --json).
 // Exit code: 0 finished (two-mass and particle_impact scenes: stick or rebound), 3 ended otherwise
-// (unstable, timed-out, error; the summary says why), 2 bad input.
+// (unstable, timed-out, error; the summary says why), 2 bad input, 74 the output could not be
+// written, 75 out of memory (app/main.cpp).
+#include <cerrno>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "app/commands.hpp"
@@ -106,8 +110,15 @@ int run_scene(const RunOptions& o) {
   }
   const nlohmann::json doc = to_json(summary);
   if (!o.out.empty()) {
-    std::ofstream f(std::filesystem::path(o.out) / (loaded.scene.name + ".summary.json"));
+    const std::filesystem::path file =
+        std::filesystem::path(o.out) / (loaded.scene.name + ".summary.json");
+    std::ofstream f(file);
     f << doc.dump(2) << "\n";
+    f.close();
+    if (!f) {
+      throw std::filesystem::filesystem_error("cannot write the summary", file,
+                                              std::error_code(errno, std::generic_category()));
+    }
   }
   if (o.json) {
     std::printf("%s\n", doc.dump(2).c_str());

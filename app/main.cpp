@@ -2,14 +2,65 @@
 // One binary with subcommands; each subcommand lives in its own file and
 // registers itself through app/commands.hpp.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
+#include <filesystem>
+#include <functional>
+#include <new>
 #include <string>
 
 #include "app/commands.hpp"
+#include "campaign/manager.hpp"
+#include "campaign/sqlite.hpp"
 #include "solver/build_info.hpp"
 #include "solver/common/omp_wait.hpp"
+#include "solver/io/result_file.hpp"
+
+namespace {
+
+constexpr int k_exit_bad_input = 2;
+constexpr int k_exit_output = 74;     // EX_IOERR (sysexits.h): output could not be written
+constexpr int k_exit_transient = 75;  // EX_TEMPFAIL: may pass on another attempt
+
+// Runs a subcommand; its errors end the process with a message and an exit
+// code that says whose fault it was: the input's (2), the file system's (74:
+// a full disk, a result file cut short) or the machine's memory (75).
+int run_command(const std::string& name, const std::function<int()>& run) {
+  const auto error = [&](const std::string& what, int code) {
+    std::fprintf(stderr, "splat %s: error: %s\n", name.c_str(), what.c_str());
+    return code;
+  };
+  int code = 0;
+  try {
+    code = run();
+  } catch (const std::bad_alloc&) {
+    return error(
+        "out of memory (std::bad_alloc): the run needs more memory than this machine gives it; "
+        "use fewer elements or particles (elements_across, spacing) or a larger machine",
+        k_exit_transient);
+  } catch (const splat::ResultFileError& e) {
+    return error(std::string("cannot write the output: ") + e.what(), k_exit_output);
+  } catch (const std::filesystem::filesystem_error& e) {
+    return error(std::string("input/output: ") + e.what(), k_exit_output);
+  } catch (const splat::campaign::RunStopped& e) {
+    return error(e.what(), k_exit_output);
+  } catch (const splat::campaign::SqliteError& e) {
+    return error(std::string("the campaign store: ") + e.what(), k_exit_output);
+  } catch (const std::exception& e) {
+    return error(e.what(), k_exit_bad_input);
+  }
+  // Output printed to a full disk is lost without this check.
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    return error(std::string("cannot write the standard output: ") + std::strerror(errno),
+                 k_exit_output);
+  }
+  return code;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // Threads that finish their share of a step sleep instead of spinning:
@@ -37,14 +88,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   for (auto& [sub, run] : commands) {
-    if (sub->parsed()) {
-      try {
-        return run();
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "splat %s: error: %s\n", sub->get_name().c_str(), e.what());
-        return 2;
-      }
-    }
+    if (sub->parsed()) return run_command(sub->get_name(), run);
   }
   std::fputs(app.help().c_str(), stdout);
   return 0;

@@ -16,6 +16,10 @@ struct JobEnd {
   JobState state = JobState::failed;
   std::string reason;
   bool retry = false;  // a transient failure with retries left: queue it again
+  // The host could not hold the job's output (exit 74, EX_IOERR: a full
+  // disk): no fault of the job. The local manager queues it again and ends
+  // the run; Slurm rounds retry it like a transient failure.
+  bool host_fault = false;
   std::optional<ResultRecord> result;
   std::optional<int> threads;
 };

@@ -3,7 +3,9 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <fstream>
@@ -13,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 
 #include "campaign/job_end.hpp"
@@ -29,6 +32,7 @@ using nlohmann::json;
 namespace {
 
 constexpr int k_exit_transient = 75;  // EX_TEMPFAIL (sysexits.h)
+constexpr int k_exit_output = 74;     // EX_IOERR: the job could not write its output
 constexpr int k_exit_bad_input = 2;
 
 std::string read_text(const std::filesystem::path& p, std::size_t max_bytes) {
@@ -42,6 +46,21 @@ std::string read_text(const std::filesystem::path& p, std::size_t max_bytes) {
 std::string signal_name(int sig) {
   const char* d = strsignal(sig);
   return "signal " + std::to_string(sig) + (d ? std::string(" (") + d + ")" : std::string());
+}
+
+// Writes `text` to `file`, or throws naming the file and the system's reason
+// (a full disk must not leave a job a truncated scene to fail on).
+void write_file(const std::filesystem::path& file, const std::string& text) {
+  std::FILE* f = std::fopen(file.c_str(), "w");
+  if (f == nullptr) {
+    throw std::system_error(errno, std::generic_category(), "cannot write " + file.string());
+  }
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  const int write_errno = errno;
+  if (std::fclose(f) != 0 || !written) {
+    throw std::system_error(written ? errno : write_errno, std::generic_category(),
+                            "cannot write " + file.string());
+  }
 }
 
 std::filesystem::path self_executable() {
@@ -69,6 +88,41 @@ JobEnd transient(const JobRecord& job, const JobOptions& opts, const std::string
              (e.retry ? ", retrying" : ", no retries left");
   return e;
 }
+
+// The jobs the managers of this process are running now (several campaigns
+// of one server share the process and its owner name): a job this process
+// owns that is not among them was left `running` by a run a store error
+// ended, and is requeued by the next run.
+class JobsRunningHere {
+ public:
+  void add(const std::string& hash) {
+    std::lock_guard lock(m_);
+    ++count_[hash];
+  }
+  void remove(const std::string& hash) {
+    std::lock_guard lock(m_);
+    if (auto it = count_.find(hash); it != count_.end() && --it->second == 0) count_.erase(it);
+  }
+  bool contains(const std::string& hash) const {
+    std::lock_guard lock(m_);
+    return count_.count(hash) > 0;
+  }
+
+ private:
+  mutable std::mutex m_;
+  std::map<std::string, int> count_;
+};
+
+JobsRunningHere& jobs_running_here() {
+  static JobsRunningHere jobs;
+  return jobs;
+}
+
+// A job's end the host caused (exit 74: its output could not be written).
+class HostFault : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // Runs `f` when the scope ends, also by an exception.
 class ScopeExit {
@@ -115,6 +169,12 @@ JobEnd interpret(const JobRecord& job, const ProcessResult& pr, const std::files
   if (pr.exit_code == k_exit_transient) {
     e = transient(job, opts, "transient failure (exit code 75)");
     e.reason += ": " + err_tail();
+    return e;
+  }
+  if (pr.exit_code == k_exit_output) {
+    e.host_fault = true;
+    e.retry = job.attempts <= opts.retries;  // what a Slurm round does with it
+    e.reason = "could not write its output (exit code 74): " + err_tail();
     return e;
   }
   if (pr.exit_code == k_exit_bad_input) {
@@ -295,7 +355,8 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   const std::int64_t cid = opened.id;
   report.campaign_id = cid;
   report.grid = opened.points;
-  report.orphans_requeued = store.recover_orphaned_jobs(host);
+  report.orphans_requeued = store.recover_orphaned_jobs(
+      host, owner, [](const std::string& hash) { return jobs_running_here().contains(hash); });
 
   // Worker slots: the dispatcher (this thread) claims jobs and hands them
   // over; each worker runs one child at a time and records its end.
@@ -311,10 +372,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   auto run_one = [&](const JobRecord& job) {
     const std::filesystem::path dir = jobs_dir / job.hash;
     std::filesystem::create_directories(dir / "out");
-    {
-      std::ofstream f(dir / "scene.json");
-      f << job.scene << "\n";
-    }
+    write_file(dir / "scene.json", job.scene + "\n");
     ProcessSpec ps;
     ps.argv = {
         program.string(),       "run",       (dir / "scene.json").string(),   "--json", "--out",
@@ -327,6 +385,12 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     ++started;
     const ProcessResult pr = run_process(ps);
     JobEnd e = interpret(job, pr, dir, spec.job);
+    if (e.host_fault) {
+      // Not the job's fault: it runs again once the host has room, and this
+      // run ends (every other job would meet the same full disk).
+      store.requeue_job(job.hash, "requeued: " + e.reason, false);
+      throw HostFault("job " + job.hash.substr(0, 12) + " " + e.reason);
+    }
     if (e.retry) {
       store.requeue_job(job.hash, e.reason);
     } else {
@@ -348,17 +412,24 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
         }
         try {
           run_one(job);
+        } catch (const HostFault& ex) {
+          std::lock_guard lock(m);
+          worker_errors.push_back(ex.what());
         } catch (const std::exception& ex) {
-          // The job could not be run or recorded; say so on the job if the
-          // store still works, and never let it escape the worker.
+          // The job could not be prepared or recorded (a full disk, a store
+          // that refuses writes): no fault of the job. It goes back to the
+          // queue if the store still takes writes (else the next run
+          // requeues it), and the run ends with the error; nothing escapes
+          // the worker.
           try {
-            store.finish_job(job.hash, JobState::failed, std::string("manager error: ") + ex.what(),
-                             std::nullopt, std::nullopt, std::nullopt);
-          } catch (const std::exception& ex2) {
-            std::lock_guard lock(m);
-            worker_errors.push_back(ex2.what());
+            store.requeue_job(job.hash, std::string("requeued: manager error: ") + ex.what(),
+                              false);
+          } catch (const std::exception&) {
           }
+          std::lock_guard lock(m);
+          worker_errors.push_back(ex.what());
         }
+        jobs_running_here().remove(job.hash);
         {
           std::lock_guard lock(m);
           --active;
@@ -391,10 +462,11 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
       unstarted.swap(work);
     }
     for (const JobRecord& j : unstarted) {
+      jobs_running_here().remove(j.hash);
       try {
-        store.requeue_job(j.hash, "requeued: its manager stopped on a store error");
+        store.requeue_job(j.hash, "requeued: its manager stopped on a store error", false);
       } catch (const std::exception&) {
-        // Left `running`: the next manager of this host requeues it.
+        // Left `running`: the next run (of this process or another) requeues it.
       }
     }
     join_pool();
@@ -456,6 +528,16 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   }
   auto last_poll = std::chrono::steady_clock::now();
   while (!use_slurm) {
+    {
+      // A worker met a fault of the host or the store: end the run with it
+      // (the stop above requeues and joins; the campaign stays `active`).
+      std::lock_guard lock(m);
+      if (!worker_errors.empty()) {
+        throw RunStopped("campaign run stopped: " + worker_errors.front() +
+                         "; jobs stored so far are kept and the campaign stays active: "
+                         "free space (or fix the store) and run it again to resume");
+      }
+    }
     bool cancel_now = options.interrupt && options.interrupt->load();
     const auto now = std::chrono::steady_clock::now();
     if (!cancel_now &&
@@ -476,6 +558,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     for (; free_slots > 0; --free_slots) {
       std::optional<JobRecord> job = store.claim_next_job(cid, owner, host);
       if (!job) break;
+      jobs_running_here().add(job->hash);
       {
         std::lock_guard lock(m);
         work.push_back(std::move(*job));
@@ -514,6 +597,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     cancel_running = true;
     std::lock_guard lock(m);
     for (const JobRecord& j : work) {
+      jobs_running_here().remove(j.hash);
       store.finish_job(j.hash, JobState::cancelled, "campaign cancelled before the job started",
                        std::nullopt, std::nullopt, std::nullopt);
     }

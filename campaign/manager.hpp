@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,18 @@ struct SweepReport {
   std::vector<WindowRecord> windows;
 };
 
-// Runs (or resumes) the campaign to its end or to cancellation.
+// A run ended by a fault of the host or the store (a full disk: a job's
+// output or the store could not be written). The jobs stored so far are
+// kept, the unfinished ones are queued again (or requeued by the next
+// manager of this host) and the campaign stays `active`, to be resumed.
+class RunStopped : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Runs (or resumes) the campaign to its end or to cancellation. Throws
+// RunStopped or SqliteError when the host or the store fails under it,
+// having stopped and joined its workers first.
 SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptions& options);
 
 // Classification of one stored point for windows: stick / rebound from the

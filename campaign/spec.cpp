@@ -33,7 +33,13 @@ constexpr NamedAxis k_named_axes[] = {
     {"D_adh_max", "/two_mass/adhesion/D_adh_max", "/particle_impact/adhesion/D_adh_max", "-"},
 };
 
-std::vector<double> velocity_values(const json& v) {
+// Speeds a velocity range may list: far more than any campaign runs, and few
+// enough to list without exhausting memory.
+constexpr double k_max_range_speeds = 1e6;
+
+// The speeds of the velocity axis; nullopt when a range lists more than
+// k_max_range_speeds (a step too small for the span, or for `from` itself).
+std::optional<std::vector<double>> velocity_values(const json& v) {
   std::vector<double> out;
   if (v.contains("values")) {
     for (const json& x : v.at("values")) out.push_back(x.get<double>());
@@ -44,13 +50,51 @@ std::vector<double> velocity_values(const json& v) {
   const double to = r.at("to").get<double>();
   const double step = r.at("step").get<double>();
   // from + i*step (not repeated addition, which drifts); `to` is included
-  // when it is on the grid up to rounding.
-  for (long i = 0;; ++i) {
-    const double x = from + static_cast<double>(i) * step;
-    if (x > to + 1e-9 * step) break;
-    out.push_back(x);
+  // when it is on the grid up to rounding. Counted first: a step below the
+  // spacing of doubles at `from` never moves.
+  const double count = std::floor((to - from) / step + 1e-9) + 1;
+  if (!(count <= k_max_range_speeds) || from + step == from) return std::nullopt;
+  for (long i = 0; i < static_cast<long>(std::max(count, 0.0)); ++i) {
+    out.push_back(from + static_cast<double>(i) * step);
   }
   return out;
+}
+
+// The campaign field that wrote the job scene's pointer `at` (a velocity or
+// an axis value, with the rest of the pointer below it; the axis's pointer
+// itself when the scene has no such field), or nullopt when the base scene
+// holds it.
+std::optional<std::string> campaign_pointer_of(const CampaignSpec& spec, const json& params,
+                                               double velocity, const SchemaViolation& v) {
+  const std::string& at = v.pointer;
+  const bool unknown_field = v.message.rfind("unknown field", 0) == 0;
+  const auto below = [&](const std::string& p) -> std::optional<std::string> {
+    if (p.empty()) return std::nullopt;
+    if (at == p) return std::string();
+    if (at.rfind(p + "/", 0) == 0) return at.substr(p.size());
+    return std::nullopt;
+  };
+  if (const auto rest = below(spec.velocity_pointer)) {
+    if (unknown_field && rest->empty()) return "/velocity/pointer";
+    const json& axis = spec.document.is_object() ? spec.document.value("velocity", json()) : json();
+    const auto it = std::find(spec.velocities.begin(), spec.velocities.end(), velocity);
+    if (axis.is_object() && axis.contains("range")) return "/velocity/range";
+    if (axis.is_object() && axis.contains("values") && it != spec.velocities.end()) {
+      return "/velocity/values/" + std::to_string(it - spec.velocities.begin());
+    }
+    return "/velocity";
+  }
+  std::size_t field = 0;
+  for (const ParameterAxis& a : spec.axes) {
+    const std::string where = a.is_field ? "/fields/" + std::to_string(field++) : "/" + a.name;
+    const auto rest = below(a.pointer);
+    if (!rest || !params.contains(a.name)) continue;
+    if (unknown_field && rest->empty()) return where + "/pointer";
+    const auto it = std::find(a.values.begin(), a.values.end(), params.at(a.name));
+    if (it == a.values.end()) return where;
+    return where + "/values/" + std::to_string(it - a.values.begin()) + *rest;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -124,9 +168,14 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
 
   const json& v = doc.at("velocity");
   s.velocity_pointer = pointer_of(v, "/velocity", "/two_mass/V0", "/particle_impact/velocity");
-  s.velocities = velocity_values(v);
+  const auto speeds = velocity_values(v);
+  if (speeds) s.velocities = *speeds;
   s.velocity_scale = v.value("scale", 1.0);
-  if (s.velocities.empty()) {
+  if (!speeds) {
+    problems.push_back({"/velocity/range",
+                        "lists more than 1e6 speeds (or a step too small to "
+                        "move from `from` in double precision)"});
+  } else if (s.velocities.empty()) {
     problems.push_back({"/velocity/range", "must contain at least one speed (from <= to)"});
   }
 
@@ -251,12 +300,18 @@ ExpandedJob make_job(const CampaignSpec& spec, const json& params, double veloci
   try {
     job.scene = resolve(scene, spec.base_dir);
   } catch (const InputError& e) {
-    // The scene pointers are inside the job's scene: say which job.
+    // The scene pointers are inside the job's scene: named at the campaign
+    // field that wrote the value (a velocity, an axis value) or else in the
+    // base scene, saying which job.
+    const std::string which =
+        "job at " + std::to_string(velocity) + " m/s, parameters " + canonical_text(params);
     std::vector<SchemaViolation> v;
     for (const SchemaViolation& x : e.violations()) {
-      v.push_back({"/base_scene" + x.pointer, x.message + " (job at " + std::to_string(velocity) +
-                                                  " m/s, parameters " + canonical_text(params) +
-                                                  ")"});
+      if (const auto at = campaign_pointer_of(spec, params, velocity, x)) {
+        v.push_back({*at, x.message + " (written at " + x.pointer + " of the " + which + ")"});
+      } else {
+        v.push_back({"/base_scene" + x.pointer, x.message + " (" + which + ")"});
+      }
     }
     throw InputError(std::move(v));
   }

@@ -540,16 +540,20 @@ void Store::finish_job(const std::string& hash, JobState state, const std::strin
   });
 }
 
-void Store::requeue_job(const std::string& hash, const std::string& reason) {
+void Store::requeue_job(const std::string& hash, const std::string& reason, bool attempt_counts) {
   write([&](Database& db) {
-    db.prepare("UPDATE jobs SET state = 'queued', exit_reason = ?, owner = '' WHERE hash = ?")
+    db.prepare(
+          "UPDATE jobs SET state = 'queued', exit_reason = ?, owner = '', "
+          "attempts = CASE WHEN ? THEN attempts ELSE MAX(attempts - 1, 0) END WHERE hash = ?")
         .bind(1, reason)
-        .bind(2, hash)
+        .bind(2, attempt_counts ? 1 : 0)
+        .bind(3, hash)
         .run();
   });
 }
 
-int Store::recover_orphaned_jobs(const std::string& host) {
+int Store::recover_orphaned_jobs(const std::string& host, const std::string& own_owner,
+                                 const std::function<bool(const std::string&)>& running_here) {
   int n = 0;
   write([&](Database& db) {
     Statement running =
@@ -557,7 +561,10 @@ int Store::recover_orphaned_jobs(const std::string& host) {
     running.bind(1, host + ":%");
     std::vector<std::string> orphans;
     while (running.step()) {
-      if (!owner_alive(running.text(1))) orphans.push_back(running.text(0));
+      const std::string owner = running.text(1);
+      const bool left_here = !own_owner.empty() && owner == own_owner && running_here &&
+                             !running_here(running.text(0));
+      if (left_here || !owner_alive(owner)) orphans.push_back(running.text(0));
     }
     Statement requeue = db.prepare(
         "UPDATE jobs SET state = 'queued', owner = '', "

@@ -39,8 +39,9 @@ constexpr double k_settle_transits = 100.0;  // -
 // particle with SPH. One constant: move it when the FE table moves.
 constexpr double k_fe_max_velocity = 500.0;  // m/s
 constexpr int k_sph_default_across =
-    5;                             // spacings across R (thesis: 1.25 um SPH radius at R 12.5 um)
-constexpr double k_sph_gap = 0.1;  // initial height of the ball above R, in spacings, -
+    5;  // spacings across R (thesis: 1.25 um SPH radius at R 12.5 um)
+constexpr int k_max_spacings_across = 64;  // schema maximum of elements_across, -
+constexpr double k_sph_gap = 0.1;          // initial height of the ball above R, in spacings, -
 // SPH substrate block: half-width and depth R (2.4 + v / 1500 m/s), 2.8 R at
 // 600 m/s (the thesis's 70 x 70 x 35 um block at R 12.5 um), at most 6 R.
 constexpr double k_sph_size_base = 2.4;              // -
@@ -224,6 +225,14 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
   const double h = sph ? particle.value("spacing", R / n) : R / n;
   if (sph && !(R / h >= 2.0)) {
     fail(base + "/particle/spacing", "must be at most R / 2 (m): fewer than 2 spacings across R");
+  }
+  // The bound elements_across has in the schema: finer spacings ask for more
+  // particles (~ (R / h)^3) than memory holds (1e-8 m at R 12.5 um ended in
+  // std::bad_alloc).
+  if (sph && R / h > k_max_spacings_across * (1.0 + 1e-9)) {
+    fail(base + "/particle/spacing",
+         "must be at least R / " + std::to_string(k_max_spacings_across) + " (m): at most " +
+             std::to_string(k_max_spacings_across) + " spacings across R, as elements_across");
   }
   // Numerics of both bodies (see the header: stiffness hourglass by default).
   json hourglass = {{"type", "stiffness"}, {"coefficient", k_hourglass_coefficient}};

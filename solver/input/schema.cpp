@@ -969,11 +969,22 @@ class DuplicateFinder {
   }
 
   // The pointer of the value being read.
-  std::string pointer() const {
+  std::string pointer() const { return pointer_with_next(false); }
+
+ public:
+  // The pointer of the scalar being read when the parser refuses it (it has
+  // not been counted yet in its array).
+  std::string pending_pointer() const { return pointer_with_next(true); }
+
+ private:
+  std::string pointer_with_next(bool next) const {
     std::string p;
-    for (const Frame& f : frames_) {
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+      const Frame& f = frames_[i];
+      const bool last = i + 1 == frames_.size();
       p += '/';
-      p += f.is_array ? std::to_string(f.count - 1) : escape_pointer_token(f.key);
+      p += f.is_array ? std::to_string(f.count - (next && last ? 0 : 1))
+                      : escape_pointer_token(f.key);
     }
     return p;
   }
@@ -1009,8 +1020,8 @@ std::vector<SchemaViolation> validate_against(const json& schema, const json& do
 }
 
 json parse_json_text(std::string_view text, std::string_view what) {
+  DuplicateFinder finder;
   try {
-    DuplicateFinder finder;
     return json::parse(text.begin(), text.end(), std::ref(finder));
   } catch (const json::parse_error& e) {
     // nlohmann reads "... parse error at line 3, column 5: REASON".
@@ -1039,8 +1050,20 @@ json parse_json_text(std::string_view text, std::string_view what) {
     throw InputError(
         {{"", "malformed JSON in " + std::string(what) + " at " + where + ": " + reason}});
   } catch (const json::exception& e) {
-    // Other refusals (a number too large for a double) come without a
-    // position; drop nlohmann's "[json.exception.out_of_range.406] " tag.
+    if (e.id == 406) {
+      // A number beyond double range (nlohmann's out_of_range.406, "number
+      // overflow parsing '1e400'", thrown as its base class): named at the
+      // field that holds it.
+      static const std::regex number(R"(parsing '([^']*)')");
+      const std::string full = e.what();
+      std::smatch m;
+      const std::string token = std::regex_search(full, m, number) ? m[1].str() : "a number";
+      throw InputError({{finder.pending_pointer(),
+                         "the number " + token + " in " + std::string(what) +
+                             " is beyond the range of a double (magnitude at most 1.8e308)"}});
+    }
+    // Other refusals come without a position; drop nlohmann's
+    // "[json.exception.KIND.N] " tag.
     std::string reason = e.what();
     if (const std::size_t tag_end = reason.find("] "); tag_end != std::string::npos) {
       reason.erase(0, tag_end + 2);

@@ -5,6 +5,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -67,8 +68,8 @@ std::string take_hdf5_error() {
 }
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& what) {
-  throw std::runtime_error("result file '" + file.string() + "': " + what + " (" +
-                           take_hdf5_error() + ")");
+  throw ResultFileError("result file '" + file.string() + "': " + what + " (" + take_hdf5_error() +
+                        ")");
 }
 
 void check(herr_t status, const std::filesystem::path& file, const std::string& what) {
@@ -652,14 +653,15 @@ struct ResultFile::Impl {
       stream << out.str();
       stream.close();
       if (!stream) {
-        throw std::runtime_error("result file: cannot write '" + temp.string() + "'");
+        throw ResultFileError("result file: cannot write '" + temp.string() +
+                              "': " + std::generic_category().message(errno));
       }
     }
     std::error_code error;
     std::filesystem::rename(temp, xmf_path, error);
     if (error) {
-      throw std::runtime_error("result file: cannot rename '" + temp.string() + "' to '" +
-                               xmf_path.string() + "': " + error.message());
+      throw ResultFileError("result file: cannot rename '" + temp.string() + "' to '" +
+                            xmf_path.string() + "': " + error.message());
     }
   }
 

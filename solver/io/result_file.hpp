@@ -32,7 +32,8 @@
 // snapshot leaves a readable pair. A file without snapshots has no .xmf (the
 // constructor removes one left by an earlier run).
 //
-// HDF5 failures throw std::runtime_error naming the file and the object path;
+// HDF5 failures (and a .xmf that cannot be written) throw ResultFileError (a
+// std::runtime_error) naming the file and the object path;
 // bad arguments throw std::invalid_argument; use after close() throws
 // std::logic_error. All calls into HDF5 from this module are serialised.
 #pragma once
@@ -43,11 +44,19 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace splat {
+
+// The result file could not be written or read (a full disk, a file cut
+// short): a fault of the file system, not of the scene.
+class ResultFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // XDMF Quadrilateral, Hexahedron, Polyvertex. Node order per cell is that of
 // VTK/XDMF: quads counter-clockwise, hexahedra bottom face then top face.

@@ -16,6 +16,7 @@
 #include <mutex>
 #include <vector>
 
+#include "support/small_tmpfs.hpp"
 #include "tests/api/api_fixture.hpp"
 
 namespace splat::api_test {
@@ -257,6 +258,62 @@ TEST(api_service, sigterm_leaves_the_campaign_resumable) {
     if (j->attempts == 1) ++once;
   }
   EXPECT_GE(once, succeeded_at_stop);
+}
+
+// `splat serve` with its store on a small tmpfs the test mounts and fills
+// while a campaign runs (issue 28 item 4): the server keeps serving, the run
+// ends with the campaign `active` and no job blamed (`failed`), a submission
+// while the disk is full is a 503 or is stored whole; with room again the
+// next server finishes the campaign. Before: jobs whose scene file could not
+// be written failed as "bad input".
+TEST(api_service, a_full_disk_leaves_the_server_serving_and_blames_no_job) {
+  TempDir dir;
+  const fs::path disk = dir.path / "disk";
+  test_support::SmallTmpfs tmpfs(disk, 64L << 20);  // 80 jobs take about 5 MiB
+  if (!tmpfs.mounted()) GTEST_SKIP() << tmpfs.why_not();
+  const std::string db = (disk / "store.db").string();
+  json spec = small_campaign("full-disk");
+  spec["velocity"] = {{"range", {{"from", 0.05}, {"to", 2.0}, {"step", 0.05}}}};  // 80 jobs
+  std::int64_t id = 0;
+  {
+    ServeProcess p({"--db", db, "--port", "0", "--workers", "1"});
+    ASSERT_GT(p.port(), 0);
+    httplib::Client c("127.0.0.1", p.port());
+    auto r = post_json(c, "/api/v1/campaigns", spec);
+    ASSERT_EQ(r->status, 202) << r->body;
+    id = body_json(r)["id"];
+    const std::string self = "/api/v1/campaigns/" + std::to_string(id);
+    for (int i = 0; i < 1000 && body_json(c.Get(self.c_str()))["jobs"]["succeeded"] < 3; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_TRUE(test_support::SmallTmpfs::fill(disk / "filler"));
+    json doc;
+    for (int i = 0; i < 600; ++i) {
+      doc = body_json(c.Get(self.c_str()));
+      if (!doc["running_now"].get<bool>()) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    EXPECT_FALSE(doc["running_now"].get<bool>()) << doc.dump();
+    EXPECT_EQ(doc["state"], "active") << doc.dump();
+    EXPECT_EQ(doc["jobs"]["failed"], 0) << doc.dump();
+    EXPECT_LT(doc["jobs"]["succeeded"].get<int>(), 80) << "finished before the disk filled";
+    ASSERT_EQ(c.Get("/api/v1/health")->status, 200);
+    auto full = post_json(c, "/api/v1/campaigns", small_campaign("while-full"));
+    ASSERT_TRUE(full);
+    if (full->status != 202) expect_problem(full, 503);
+    fs::remove(disk / "filler");
+    EXPECT_EQ(p.stop(SIGTERM, 20), 0);
+  }
+  {
+    ServeProcess p({"--db", db, "--port", "0", "--workers", "2"});
+    ASSERT_GT(p.port(), 0);
+    httplib::Client c("127.0.0.1", p.port());
+    const json done = wait_for_campaign(c, id, 120);
+    EXPECT_EQ(done["state"], "finished") << done.dump();
+    EXPECT_EQ(done["jobs"]["succeeded"], 80);
+    EXPECT_EQ(done["jobs"]["failed"], 0);
+    EXPECT_EQ(p.stop(SIGINT, 20), 0);
+  }
 }
 
 TEST(api_service, refuses_a_public_address_without_a_token) {

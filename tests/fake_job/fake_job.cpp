@@ -12,11 +12,15 @@
 //      "garbage": true,              print text that is not JSON, exit 0
 //      "outcome": "unstable",        outcome to report (default: from threshold)
 //      "threshold": 2.5,             stick when V0 < threshold, else rebound
+//      "write_bytes": 65536,         write a result file of this size in DIR
 //      "log": "/tmp/x.log",          append "start DIR" / "end DIR" lines
 //      "log_env": "NAME"}}           and "env NAME=VALUE" (or "env NAME unset")
+// Like splat, it exits 74 (EX_IOERR) when its output cannot be written.
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -77,6 +81,18 @@ int main(int argc, char** argv) {
     std::printf("this is not a summary\n");
     return 0;
   }
+  const auto cannot_write = [](const std::string& what) {
+    std::fprintf(stderr, "fake_job: cannot write %s: %s\n", what.c_str(), std::strerror(errno));
+    return 74;
+  };
+  if (const long bytes = fake.value("write_bytes", 0L); bytes > 0) {
+    const std::string file = out_dir + "/result.bin";
+    std::FILE* f = std::fopen(file.c_str(), "w");
+    if (f == nullptr) return cannot_write(file);
+    const std::string block(std::size_t(bytes), 'r');
+    const bool written = std::fwrite(block.data(), 1, block.size(), f) == block.size();
+    if (std::fclose(f) != 0 || !written) return cannot_write(file);
+  }
   std::string outcome = fake.value("outcome", "");
   if (outcome.empty()) {
     outcome = scene.value("V0", 0.0) < fake.value("threshold", 0.0) ? "stick" : "rebound";
@@ -88,6 +104,7 @@ int main(int argc, char** argv) {
                                   {"threads", 1},
                                   {"output", {{"hdf5", nullptr}, {"xdmf", nullptr}}}};
   std::printf("%s\n", summary.dump(2).c_str());
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) return cannot_write("the standard output");
   note("end");
   const bool done = outcome == "stick" || outcome == "rebound" || outcome == "finished";
   return done ? 0 : 3;

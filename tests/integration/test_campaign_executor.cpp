@@ -22,6 +22,7 @@
 
 #include "campaign/manager.hpp"
 #include "campaign/sqlite.hpp"
+#include "support/small_tmpfs.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -30,6 +31,7 @@ using namespace splat::campaign;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
+using splat::test_support::SmallTmpfs;
 using splat::test_support::TempDir;
 
 const SceneResolver identity = [](const json& scene, const fs::path&) { return scene; };
@@ -274,6 +276,69 @@ TEST(campaign_executor, a_store_error_ends_the_run_with_the_error_and_loses_no_j
   const SweepReport r = run_sweep(store, spec, fake_options(2));
   EXPECT_EQ(r.state, CampaignState::finished);
   EXPECT_EQ(r.counts.succeeded, 4);
+}
+
+// The store and the jobs' folders on a small tmpfs that fills up while the
+// campaign runs (issue 28 item 4): the run ends with an error that says the
+// disk is full, the process lives on, every result stored before is kept,
+// no job is blamed (`failed`) for the host's fault, the campaign stays
+// `active`, and once there is room again the same run finishes it.
+TEST(campaign_executor, a_full_disk_ends_the_run_clearly_and_loses_nothing) {
+  TempDir t;
+  const fs::path disk = t.path / "disk";
+  SmallTmpfs tmpfs(disk, 4L << 20);
+  if (!tmpfs.mounted()) GTEST_SKIP() << tmpfs.why_not();
+  const fs::path log = t.path / "jobs.log";  // off the small disk
+  std::vector<double> speeds;
+  for (int i = 0; i < 12; ++i) speeds.push_back(i);
+  const CampaignSpec spec = fake_campaign(
+      "full-disk",
+      {json::object(
+          {{"sleep", 0.2}, {"threshold", 6}, {"write_bytes", 64 * 1024}, {"log", log.string()}})},
+      speeds);
+
+  Store store(disk / "c.db");
+  std::map<std::string, std::string> stored_before;  // job hash -> outcome at the fill
+  bool filled = false;
+  ManagerOptions o = fake_options(2);
+  o.on_progress = [&](const Progress& p) {
+    if (filled || p.counts.succeeded < 4) return;
+    for (const PointStatus& s : store.points(p.campaign_id)) {
+      if (s.state == JobState::succeeded) stored_before[s.point.job_hash] = *s.outcome;
+    }
+    filled = SmallTmpfs::fill(disk / "filler");
+  };
+  std::string error;
+  try {
+    run_sweep(store, spec, o);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  ASSERT_TRUE(filled);
+  EXPECT_TRUE(error.find("No space left on device") != std::string::npos ||
+              error.find("database or disk is full") != std::string::npos)
+      << "the error does not say the disk is full: '" << error << "'";
+
+  fs::remove(disk / "filler");
+  const std::int64_t cid = store.campaigns().at(0).id;
+  EXPECT_EQ(store.campaign(cid)->state, CampaignState::active);
+  const JobCounts after = store.job_counts(cid);
+  EXPECT_EQ(after.failed, 0) << "a job was blamed for the full disk";
+  ASSERT_GE(stored_before.size(), 4u);
+  for (const auto& [hash, outcome] : stored_before) {
+    const auto job = store.job(hash);
+    ASSERT_TRUE(job) << hash;
+    EXPECT_EQ(job->state, JobState::succeeded) << hash;
+    ASSERT_TRUE(store.result(hash)) << hash;
+    EXPECT_EQ(store.result(hash)->outcome, outcome) << hash;
+  }
+
+  const SweepReport r = run_sweep(store, spec, fake_options(2));
+  EXPECT_EQ(r.state, CampaignState::finished);
+  EXPECT_EQ(r.counts.succeeded, 12);
+  EXPECT_EQ(r.counts.failed, 0);
+  ASSERT_EQ(r.windows.size(), 1u);
+  EXPECT_EQ(*r.windows[0].maximum_velocity, 5.5);
 }
 
 TEST(campaign_executor, finished_jobs_are_reused_and_rerun_on_request) {

@@ -8,10 +8,15 @@
 #include <string>
 
 #include "support/scene_runs.hpp"
+#include "support/small_tmpfs.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
+using splat::test_support::run_command;
 using splat::test_support::run_splat;
+using splat::test_support::SmallTmpfs;
+using splat::test_support::TempDir;
 
 TEST(cli, version_names_the_commit) {
   const auto o = run_splat("--version");
@@ -118,6 +123,47 @@ TEST(cli, an_override_beyond_double_names_the_override) {
   EXPECT_NE(o.stdout_text.find("outside the range of a double"), std::string::npos)
       << o.stdout_text;
   EXPECT_EQ(o.stdout_text.find("json.exception"), std::string::npos) << o.stdout_text;
+}
+
+// Output to a full disk is the file system's fault, not the input's: exit 74
+// (EX_IOERR, which a campaign manager does not blame on the job) with the
+// file and the system's reason, whether the result files or the summary on
+// stdout cannot be written. Before: exit 2 ("bad input") or exit 0 with the
+// summary lost.
+TEST(cli, output_to_a_full_disk_exits_74_naming_the_reason) {
+  TempDir t;
+  const std::filesystem::path disk = t.path / "disk";
+  SmallTmpfs tmpfs(disk, 256 * 1024);
+  if (!tmpfs.mounted()) GTEST_SKIP() << tmpfs.why_not();
+  ASSERT_TRUE(SmallTmpfs::fill(disk / "filler"));
+  const std::string scene = std::string(SPLAT_SOURCE_DIR) + "/scenes/verification/two_mass.json";
+  auto o = run_splat("run " + scene + " --out " + (disk / "out").string());
+  EXPECT_EQ(o.code, 74) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("No space left on device"), std::string::npos) << o.stdout_text;
+  o = run_command(std::string(SPLAT_BINARY) + " run " + scene + " --out '' --json 2>&1 > " +
+                  (disk / "summary.json").string());
+  EXPECT_EQ(o.code, 74) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("cannot write the standard output: No space left on device"),
+            std::string::npos)
+      << o.stdout_text;
+}
+
+// A velocity range without end (a step below the spacing of doubles at
+// `from`) is refused at its field; it used to list speeds until
+// std::bad_alloc. Run under a 2 GB address-space limit so the old behaviour
+// fails fast instead of taking the machine's memory.
+TEST(cli, a_velocity_range_without_end_is_refused_at_its_field) {
+  TempDir t;
+  const std::filesystem::path campaign = t.path / "endless.json";
+  std::ofstream(campaign) << R"({"name": "endless", "base_scene": ")" << SPLAT_SOURCE_DIR
+                          << R"(/scenes/verification/two_mass.json",
+      "velocity": {"range": {"from": 1000, "to": 1001, "step": 1e-20}}})";
+  const auto r = run_command("ulimit -v 2000000; " + std::string(SPLAT_BINARY) + " sweep " +
+                             campaign.string() + " --db " + (t.path / "c.db").string() + " 2>&1");
+  EXPECT_EQ(r.code, 2) << r.stdout_text;
+  EXPECT_NE(r.stdout_text.find("/velocity/range: lists more than 1e6 speeds"), std::string::npos)
+      << r.stdout_text;
+  EXPECT_EQ(r.stdout_text.find("bad_alloc"), std::string::npos) << r.stdout_text;
 }
 
 }  // namespace

@@ -234,17 +234,52 @@ TEST(campaign_spec, base_scene_by_path_and_real_resolution) {
   EXPECT_EQ(same.hash, jobs[0].hash);
   EXPECT_NE(same.hash, jobs[2].hash);
 
-  // A value the scene rejects is an input error naming the scene field.
+  // A value the scene rejects is an input error naming the campaign field
+  // that wrote it, and the scene field.
   json bad = doc;
-  bad["fields"][0]["values"] = json::array({-3});
+  bad["fields"][0]["values"] = json::array({500, -3});
   try {
     expand(read_campaign(bad), splat_scene_resolver(), "v1");
     FAIL() << "no error";
   } catch (const splat::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("/base_scene/time/max_steps: must be >= 1"),
+    EXPECT_NE(std::string(e.what()).find("/fields/0/values/1: must be >= 1"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("written at /time/max_steps"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A speed whose kinetic energy is beyond double range is named at the
+// velocity that gives it, not at the scene field the campaign wrote.
+TEST(campaign_spec, a_job_value_the_scene_refuses_names_the_campaign_field) {
+  json d = two_mass_campaign();
+  d["base_scene"]["two_mass"] = {{"M", 1.0},  {"m", 2.0},    {"k", 0.0},
+                                 {"V0", 1.0}, {"area", 1.0}, {"adhesion", {{"G_c", 0.2}}}};
+  d["base_scene"]["time"] = {{"end_time", 10.0}};
+  d.erase("sigma_c");
+  d["velocity"] = {{"values", {1.0, 1e300}}};
+  try {
+    expand(read_campaign(d), splat_scene_resolver(), "v1");
+    FAIL() << "no error";
+  } catch (const splat::InputError& e) {
+    ASSERT_FALSE(e.violations().empty());
+    EXPECT_EQ(e.violations()[0].pointer, "/velocity/values/1") << e.what();
+    EXPECT_NE(e.violations()[0].message.find("must be finite in double precision"),
               std::string::npos)
         << e.what();
   }
+}
+
+// A range of more than 1e6 speeds is refused before anything is listed.
+// (Ranges without end, whose listing would exhaust memory where the check is
+// missing, are cli.a_velocity_range_without_end_is_refused_at_its_field, run
+// under an address-space limit.)
+TEST(campaign_spec, a_range_of_more_than_a_million_speeds_is_refused) {
+  json d = two_mass_campaign();
+  d["velocity"]["range"] = {{"from", 0.0}, {"to", 2e6}, {"step", 1.0}};
+  EXPECT_TRUE(has(messages(d), "/velocity/range: lists more than 1e6 speeds")) << messages(d)[0];
+  d["velocity"]["range"] = {{"from", 0.2}, {"to", 1.0}, {"step", 0.2}};
+  EXPECT_EQ(read_campaign(d).velocities.size(), 5u);
 }
 
 }  // namespace

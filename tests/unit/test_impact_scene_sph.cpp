@@ -141,6 +141,16 @@ TEST(ImpactSceneSph, resolution_is_the_spacing_or_spacings_across_the_radius) {
               2e-6, 1e-15);
   b["particle"]["elements_across"] = 4;
   EXPECT_NE(first_error(impact(b)).find("/particle_impact/particle/spacing"), std::string::npos);
+  // At most 64 spacings across R, the bound of elements_across: 1e-8 m (1250
+  // across) ran out of memory with std::bad_alloc.
+  b = al_on_al(600.0, "sph");
+  b["particle"]["spacing"] = R / 64;
+  EXPECT_EQ(first_error(impact(b)), "");
+  b["particle"]["spacing"] = 1e-8;
+  EXPECT_NE(
+      first_error(impact(b)).find("/particle_impact/particle/spacing: must be at least R / 64"),
+      std::string::npos)
+      << first_error(impact(b));
 }
 
 TEST(ImpactSceneSph, contradictions_name_the_field) {
