@@ -34,7 +34,9 @@ int run_windows(const WindowsOptions& o) {
   if (!std::filesystem::exists(o.db)) {
     throw InputError(std::vector<SchemaViolation>{{"--db", "no store '" + o.db + "'"}});
   }
-  campaign::Store store(o.db);
+  // Read only: a store on a read-only file system, or one this user may not
+  // write, is read too (windows are computed, never stored, here).
+  campaign::Store store(o.db, campaign::Store::ReadOnly{});
   const auto all = store.campaigns();
   if (all.empty())
     throw InputError(std::vector<SchemaViolation>{{"--db", "the store holds no campaign"}});

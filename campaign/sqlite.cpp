@@ -1,5 +1,7 @@
 #include "campaign/sqlite.hpp"
 
+#include <cctype>
+#include <string>
 #include <utility>
 
 namespace splat::campaign {
@@ -15,11 +17,39 @@ namespace {
 
 }  // namespace
 
-Database::Database(const std::filesystem::path& file, int busy_timeout_ms, bool read_only) {
+namespace {
+
+// A file name as an SQLite URI path: every byte outside [A-Za-z0-9/._-] escaped.
+std::string uri_path(const std::string& path) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (const char ch : path) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (std::isalnum(c) || c == '/' || c == '.' || c == '_' || c == '-') {
+      out += ch;
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Database::Database(const std::filesystem::path& file, int busy_timeout_ms, bool read_only,
+                   bool immutable) {
   const int flags =
       (read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE) |
       SQLITE_OPEN_NOMUTEX;
-  const int rc = sqlite3_open_v2(file.c_str(), &db_, flags, nullptr);
+  // Immutable (a file on a read-only file system, which nobody can change):
+  // read without the -shm file WAL mode would otherwise have to create.
+  const std::string name =
+      immutable ? "file:" + uri_path(std::filesystem::absolute(file).string()) + "?immutable=1"
+                : file.string();
+  const int rc =
+      sqlite3_open_v2(name.c_str(), &db_, flags | (immutable ? SQLITE_OPEN_URI : 0), nullptr);
   if (rc != SQLITE_OK) {
     const std::string msg = "cannot open SQLite file '" + file.string() +
                             "': " + (db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc));

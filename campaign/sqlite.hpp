@@ -30,8 +30,10 @@ class Database {
  public:
   // Opens (creating if needed) the file. `busy_timeout_ms` is set before
   // anything else so that even switching to WAL waits for other writers.
+  // `immutable`: read only, from a file nobody can change (a read-only file
+  // system), without the -shm file WAL mode would otherwise create.
   explicit Database(const std::filesystem::path& file, int busy_timeout_ms = 30000,
-                    bool read_only = false);
+                    bool read_only = false, bool immutable = false);
   ~Database();
   Database(Database&& other) noexcept;
   Database& operator=(Database&& other) noexcept;

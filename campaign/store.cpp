@@ -1,5 +1,6 @@
 #include "campaign/store.hpp"
 
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -223,13 +224,33 @@ Store::Store(const std::filesystem::path& file, int busy_timeout_ms)
   writer_ = std::thread([this] { writer_loop(); });
 }
 
+Store::Store(const std::filesystem::path& file, ReadOnly)
+    : path_(file),
+      folder_(std::filesystem::absolute(file).lexically_normal().parent_path()),
+      read_only_(true) {
+  struct statvfs fs {};
+  immutable_ = ::statvfs(file.c_str(), &fs) == 0 && (fs.f_flag & ST_RDONLY) != 0;
+  writer_db_ = std::make_unique<Database>(file, 30000, true, immutable_);
+  writer_db_->exec("PRAGMA foreign_keys = ON");
+  const int version = schema_version();
+  if (version != k_store_schema_version) {
+    throw SqliteError(SQLITE_ERROR,
+                      "store '" + path_.string() + "' has schema version " +
+                          std::to_string(version) + ", this splat reads version " +
+                          std::to_string(k_store_schema_version) +
+                          (version < k_store_schema_version
+                               ? " (open it once with a command that writes, e.g. splat sweep)"
+                               : ""));
+  }
+}
+
 Store::~Store() {
   {
     std::lock_guard lock(queue_mutex_);
     stopping_ = true;
   }
   queue_cv_.notify_all();
-  writer_.join();
+  if (writer_.joinable()) writer_.join();
 }
 
 void Store::migrate(Database& db) {
@@ -270,6 +291,9 @@ void Store::writer_loop() {
 }
 
 void Store::write(std::function<void(Database&)> work) {
+  if (read_only_) {
+    throw SqliteError(SQLITE_READONLY, "store '" + path_.string() + "' is open for reading only");
+  }
   std::packaged_task<void()> task([this, work = std::move(work)] { run_until_written(work); });
   std::future<void> done = task.get_future();
   {
@@ -306,7 +330,7 @@ Database& Store::reader() {
   std::lock_guard lock(readers_mutex_);
   auto& slot = readers_[std::this_thread::get_id()];
   if (!slot) {
-    slot = std::make_unique<Database>(path_);
+    slot = std::make_unique<Database>(path_, 30000, read_only_, immutable_);
     slot->exec("PRAGMA foreign_keys = ON");
   }
   return *slot;

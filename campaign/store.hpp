@@ -174,6 +174,12 @@ class Store {
   // `busy_timeout_ms`: how long one attempt of a write waits for the write
   // lock of another connection.
   explicit Store(const std::filesystem::path& file, int busy_timeout_ms = 30000);
+  // Opens an existing store for reading only (`splat windows`): no write,
+  // no migration, no writer thread, so a store on a read-only file system or
+  // one this user may not write can be read. Writes throw SqliteError
+  // (SQLITE_READONLY); an older schema version is refused with a message.
+  struct ReadOnly {};
+  Store(const std::filesystem::path& file, ReadOnly);
   ~Store();
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
@@ -256,6 +262,8 @@ class Store {
 
   std::filesystem::path path_;
   std::filesystem::path folder_;
+  bool read_only_ = false;
+  bool immutable_ = false;  // read only, on a read-only file system
   std::unique_ptr<Database> writer_db_;
   std::mutex queue_mutex_;
   std::condition_variable queue_cv_;

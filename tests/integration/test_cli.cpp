@@ -3,6 +3,8 @@
 // and rule in the message).
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -164,6 +166,27 @@ TEST(cli, a_velocity_range_without_end_is_refused_at_its_field) {
   EXPECT_NE(r.stdout_text.find("/velocity/range: lists more than 1e6 speeds"), std::string::npos)
       << r.stdout_text;
   EXPECT_EQ(r.stdout_text.find("bad_alloc"), std::string::npos) << r.stdout_text;
+}
+
+// `splat windows` reads a store it cannot write (issue 28 item 11): here on
+// a file system remounted read-only, which binds root too.
+TEST(cli, windows_reads_a_store_on_a_read_only_file_system) {
+  TempDir t;
+  const std::filesystem::path disk = t.path / "disk";
+  SmallTmpfs tmpfs(disk, 16L << 20);
+  if (!tmpfs.mounted()) GTEST_SKIP() << tmpfs.why_not();
+  const std::filesystem::path campaign = t.path / "small.json";
+  std::ofstream(campaign) << R"({"name": "small", "base_scene": ")" << SPLAT_SOURCE_DIR
+                          << R"(/scenes/verification/two_mass.json",
+      "velocity": {"values": [0.2, 0.4, 0.6, 0.8]}})";
+  const std::string db = (disk / "c.db").string();
+  auto o = run_splat("sweep " + campaign.string() + " --db " + db + " --workers 2");
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  ASSERT_TRUE(tmpfs.remount_read_only()) << std::strerror(errno);
+  o = run_splat("windows --db " + db + " --format csv");
+  EXPECT_EQ(o.code, 0) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("campaign_id,params"), std::string::npos) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("\n1,"), std::string::npos) << o.stdout_text;
 }
 
 }  // namespace

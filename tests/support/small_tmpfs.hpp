@@ -1,4 +1,5 @@
-// A small tmpfs a test mounts itself to fill up (a full disk), unmounted on
+// A small tmpfs a test mounts itself to fill up (a full disk) or make
+// read-only, unmounted on
 // scope exit (lazily: a store may still hold its files open). Mounting needs
 // root or CAP_SYS_ADMIN: tests skip with why_not() where it is refused.
 #pragma once
@@ -28,6 +29,11 @@ class SmallTmpfs {
   SmallTmpfs& operator=(const SmallTmpfs&) = delete;
 
   bool mounted() const { return mounted_; }
+  // Read-only from now on, for root too (a store nobody may write).
+  bool remount_read_only() {
+    return ::mount("tmpfs", dir_.c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY | MS_NOSUID | MS_NODEV,
+                   nullptr) == 0;
+  }
   std::string why_not() const {
     return "cannot mount a tmpfs at " + dir_.string() + " (" + std::strerror(error_) +
            "): a full-disk test needs root or CAP_SYS_ADMIN";
