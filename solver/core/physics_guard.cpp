@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <unordered_map>
@@ -156,13 +157,118 @@ double surface_distance(const Model& model, const ContactInterface& c, const Vec
   return best;
 }
 
+// A live particle of an SPH body: with mass and not deactivated.
+bool sph_live(const Model& model, const SphBody& body, std::size_t i) {
+  return node_live(model, i) && body.active[i - body.node_begin] != 0;
+}
+
+// Live particles of an SPH body near `region`, with their mirror images
+// across the body's symmetry planes, hashed in cells of size `reach`.
+class ParticleGrid {
+ public:
+  ParticleGrid(const Model& model, const SphBody& body, const Box& region, double reach)
+      : cell_(reach) {
+    const auto ops = static_cast<std::uint8_t>(1u << body.planes.size());
+    for (std::size_t j = body.node_begin; j < body.node_end; ++j) {
+      if (!sph_live(model, body, j) || !model.nodes.x[j].allFinite()) continue;
+      for (std::uint8_t op = 0; op < ops; ++op) {
+        const Vec3 p = mirror_point(body.planes, op, model.nodes.x[j]);
+        if ((p.array() < region.lo.array() - reach).any() ||
+            (p.array() > region.hi.array() + reach).any())
+          continue;
+        const auto k = key3(p);
+        cells_[hash(k[0], k[1], k[2])].push_back(p);
+      }
+    }
+  }
+  // Calls f(q, distance) for each point q within `reach` of p (once: two
+  // of the 27 cells around p may share a hash bucket).
+  template <class F>
+  void for_each_near(const Vec3& p, F&& f) const {
+    const auto k = key3(p);
+    std::array<long long, 27> keys{};
+    std::size_t n = 0;
+    for (long long i = k[0] - 1; i <= k[0] + 1; ++i)
+      for (long long j = k[1] - 1; j <= k[1] + 1; ++j)
+        for (long long l = k[2] - 1; l <= k[2] + 1; ++l) keys[n++] = hash(i, j, l);
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t c = 0; c < keys.size(); ++c) {
+      if (c > 0 && keys[c] == keys[c - 1]) continue;
+      const auto it = cells_.find(keys[c]);
+      if (it == cells_.end()) continue;
+      for (const Vec3& q : it->second) {
+        const double r = (q - p).norm();
+        if (r <= cell_) f(q, r);
+      }
+    }
+  }
+
+ private:
+  std::array<long long, 3> key3(const Vec3& p) const {
+    return {static_cast<long long>(std::floor(p.x() / cell_)),
+            static_cast<long long>(std::floor(p.y() / cell_)),
+            static_cast<long long>(std::floor(p.z() / cell_))};
+  }
+  static long long hash(long long i, long long j, long long l) {
+    return (i * 73856093LL) ^ (j * 19349663LL) ^ (l * 83492791LL);
+  }
+  double cell_;
+  std::unordered_map<long long, std::vector<Vec3>> cells_;
+};
+
+// SPH substrate (the particle is then SPH too): pinball overlap and
+// enclosure of each live particle of the impacting body (physics_guard.hpp).
+Interpenetration measure_sph_interpenetration(const Model& model, const GuardInput& in) {
+  Interpenetration out;
+  out.checked = true;
+  out.sph = true;
+  const std::vector<Vec3>& x = model.nodes.x;
+  const SphBody& sub =
+      model.sph_bodies[model.body_refs[static_cast<std::size_t>(in.substrate)].index];
+  const BodyRef& p_ref = model.body_refs[static_cast<std::size_t>(in.particle)];
+  const SphBody* ball = p_ref.sph ? &model.sph_bodies[p_ref.index] : nullptr;
+  auto live = [&](std::size_t i) {
+    return (ball ? sph_live(model, *ball, i) : node_live(model, i)) && x[i].allFinite();
+  };
+  const double d_s = sub.spacing;
+  const double touch = 0.5 * d_s + (ball ? 0.5 * ball->spacing : 0.0);
+  const double reach = std::max(k_enclosure_radius * d_s, touch);
+  const std::size_t p_begin = body_node_begin(model, static_cast<std::size_t>(in.particle));
+  const std::size_t p_end = body_node_end(model, static_cast<std::size_t>(in.particle));
+  Box particle_box;
+  for (std::size_t i = p_begin; i < p_end; ++i) {
+    if (live(i)) particle_box.add(x[i]);
+  }
+  if (!(d_s > 0.0) || !particle_box.lo.allFinite() || !particle_box.hi.allFinite()) return out;
+  const ParticleGrid grid(model, sub, particle_box, reach);
+  for (std::size_t i = p_begin; i < p_end; ++i) {
+    if (!live(i)) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    Vec3 direction_sum = Vec3::Zero();
+    int around = 0;
+    grid.for_each_near(x[i], [&](const Vec3& q, double r) {
+      nearest = std::min(nearest, r);
+      if (r > 0.0) direction_sum += (q - x[i]) / r;
+      ++around;
+    });
+    const double overlap = std::max(touch - nearest, 0.0);
+    const bool enclosed =
+        around >= k_enclosure_neighbours && direction_sum.norm() < k_enclosure_balance * around;
+    out.max_depth = std::max(out.max_depth, overlap);
+    out.max_ratio = std::max(out.max_ratio, overlap / d_s);
+    if (overlap > k_interpenetration_limit * d_s || enclosed) ++out.nodes_through;
+  }
+  return out;
+}
+
 }  // namespace
 
 Interpenetration measure_interpenetration(const Model& model, const GuardInput& in) {
   Interpenetration out;
-  if (in.particle < 0 || in.substrate < 0 || in.contact < 0) return out;
+  if (in.particle < 0 || in.substrate < 0) return out;
   const BodyRef& sub_ref = model.body_refs[static_cast<std::size_t>(in.substrate)];
-  if (sub_ref.sph) return out;
+  if (sub_ref.sph) return measure_sph_interpenetration(model, in);
+  if (in.contact < 0) return out;
   const ContactInterface& contact = model.contacts[static_cast<std::size_t>(in.contact)];
   if (contact.master_surface().kind == DetectionKind::particle_pinball) return out;
   out.checked = true;
@@ -238,6 +344,15 @@ std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& 
   figures.eroded_energy_fraction = energy.eroded / reference;
   figures.internal_energy_fraction = energy.internal / reference;
   char buf[320];
+  if (p.nodes_through > 0 && p.sph) {
+    std::snprintf(buf, sizeof buf,
+                  "interpenetration: %lld particle(s) through the SPH substrate (pinballs "
+                  "overlapping by more than %.2g spacing, or enclosed by substrate particles; "
+                  "deepest overlap %.3g m, %.2f spacings); the contact let the particle through",
+                  p.nodes_through, k_interpenetration_limit, p.max_depth, p.max_ratio);
+    reason = buf;
+    return figures.failed = StopReason::interpenetration;
+  }
   if (p.nodes_through > 0) {
     std::snprintf(buf, sizeof buf,
                   "interpenetration: %lld particle node(s) inside the substrate deeper than %.2g "

@@ -9,7 +9,23 @@
 // k_interpenetration_limit times the characteristic length of the element
 // holding the node: contact keeps a node on the surface to within a small
 // fraction of an element, so a node an element-half deep has gone through.
-// SPH substrates are not checked (the figures then read "not checked").
+//
+// SPH substrate (the particle is then SPH too: contact pairs SPH masters with
+// SPH slaves only). Contact keeps two particles of the bodies at least their
+// pinball radii apart, r_p + r_s = (d_p + d_s) / 2 (the spacings' halves),
+// so the depth of a live particle is how far its nearest live substrate
+// particle is inside that distance. A particle has gone through when that
+// depth exceeds k_interpenetration_limit times the substrate spacing d_s, or
+// when it is enclosed: at least k_enclosure_neighbours live substrate
+// particles within k_enclosure_radius d_s, in directions that nearly cancel
+// (|sum of unit vectors| below k_enclosure_balance times their count). A
+// particle resting on the surface or in a crater has its substrate
+// neighbours on one side (balance 0.5-0.9); on the cubic lattice, one
+// sitting flush in the top layer (substrate below and beside it) has 0.29,
+// one buried a layer deeper (substrate all round) 0; the limit, 0.15, is
+// halfway: closer to buried than to flush.
+// Deactivated SPH particles (no stress left) take no part.
+// Rigid walls are not checked (the figures then read "not checked").
 //
 // Energy. The eroded energy (kinetic + internal energy the erosion took out)
 // and the internal energy are sums of non-negative terms; either below
@@ -26,6 +42,10 @@ namespace splat {
 
 // Depth over the local element size above which a node has gone through, -.
 inline constexpr double k_interpenetration_limit = 0.5;
+// Enclosure of a particle by SPH substrate particles (above).
+inline constexpr double k_enclosure_radius = 1.5;    // neighbourhood radius / d_s, -
+inline constexpr int k_enclosure_neighbours = 6;     // fewest neighbours to count as enclosed
+inline constexpr double k_enclosure_balance = 0.15;  // |sum of unit vectors| / count, -
 
 struct GuardInput {
   int particle = -1;          // scene body index of the particle
@@ -40,12 +60,14 @@ std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& 
                                         const GuardInput& in, GuardFigures& figures,
                                         std::string& reason);
 
-// Deepest live particle node inside a live substrate element (above), and
-// how many nodes are deeper than the limit.
+// Deepest live particle node inside a live FE substrate element, or deepest
+// pinball overlap on an SPH substrate (above), and how many nodes went
+// through.
 struct Interpenetration {
   bool checked = false;
+  bool sph = false;        // measured on an SPH substrate
   double max_depth = 0.0;  // m
-  double max_ratio = 0.0;  // depth / element characteristic length, -
+  double max_ratio = 0.0;  // depth / element characteristic length (SPH: spacing), -
   long long nodes_through = 0;
 };
 Interpenetration measure_interpenetration(const Model& model, const GuardInput& in);

@@ -106,9 +106,11 @@ struct TwoMassSummary {
 // The physics checks of an impact run (solver/core/physics_guard.hpp), kept
 // whether they passed or not so that a campaign can show them.
 struct GuardFigures {
-  bool interpenetration_checked = false;  // false: an SPH substrate or a rigid wall
+  bool interpenetration_checked = false;  // false: a rigid wall
   double max_interpenetration = 0.0;      // m, deepest particle node inside the substrate
+                                          //   (SPH substrate: deepest pinball overlap)
   double interpenetration_ratio = 0.0;    // -, that depth over the local element size
+                                          //   (SPH: over the substrate spacing)
   long long nodes_through = 0;            // nodes deeper than the limit
   double eroded_energy_fraction = 0.0;    // -, eroded energy over the reference energy
   double internal_energy_fraction = 0.0;  // -, internal energy over the reference energy
