@@ -885,6 +885,7 @@ function renderDeposition() {
   const style = (data) => data.map((p) => (p.status.startsWith('open') ? 'triangle' : 'circle'));
   const critical = points('critical');
   const maximum = points('maximum');
+  const bounds = [...critical, ...maximum].flatMap((p) => [p.y, p.yMin ?? p.y, p.yMax ?? p.y]);
   box.hidden = false;
   note.textContent = (state.ladders.length ?
     'Error bars: each edge\'s error from resolution (the ladders above).' :
@@ -909,7 +910,10 @@ function renderDeposition() {
       parsing: false,
       scales: {
         x: { type: 'linear', title: { display: true, text: axisTitle(field) }, ticks: { callback: tickFormatter(unit) } },
-        y: { title: { display: true, text: 'impact velocity (m/s)' }, ticks: { callback: tickFormatter('m/s') } },
+        // Room for the error bars.
+        y: { title: { display: true, text: 'impact velocity (m/s)' }, ticks: { callback: tickFormatter('m/s') },
+          suggestedMin: bounds.length ? Math.min(...bounds) : undefined,
+          suggestedMax: bounds.length ? Math.max(...bounds) : undefined },
       },
       plugins: {
         tooltip: {
@@ -973,11 +977,16 @@ function timeScale(time) {
 // which in the list under the chart; the first DEFAULT_SERIES are shown.
 const MAX_SERIES = 8;
 const DEFAULT_SERIES = 6;
+// Shown first by default: the particle's motion and the main energies.
+const PREFERRED_SERIES = ['v_M', 'v_m', 'particle_vz', 'substrate_vz', 'kinetic', 'internal', 'plastic_work',
+  'adhesion', 'contact_work', 'hourglass', 'balance_error'];
+const seriesRank = (c) => (PREFERRED_SERIES.includes(c) ? PREFERRED_SERIES.indexOf(c) : PREFERRED_SERIES.length);
 
 function drawHistoryChart(spec, h) {
   const old = state.charts[spec.canvas];
   if (old) old.destroy();
-  const cols = h ? Object.keys(h.columns).filter((c) => c !== 'time' && h.units[c] === spec.unit) : [];
+  const cols = h ? Object.keys(h.columns).filter((c) => c !== 'time' && h.units[c] === spec.unit)
+    .sort((a, b) => seriesRank(a) - seriesRank(b) || a.localeCompare(b)) : [];
   // A choice holds while the columns are the same (jobs of one kind).
   const key = cols.join(',');
   if (!state.series[spec.canvas] || state.series[spec.canvas].key !== key) {
