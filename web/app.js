@@ -409,6 +409,12 @@ async function refreshDetail() {
     `${c.state}; ${j.total} jobs: ${j.succeeded} succeeded, ${j.failed} failed, ${j.timed_out} timed out, ` +
     `${j.cancelled} cancelled, ${j.running} running, ${j.queued} queued; ${c.refinement_jobs} from refinement` +
     (c.material_pair ? `; materials ${c.material_pair}` : '') + (c.description ? ` - ${c.description}` : '');
+  const models = modelsOf(jobs);
+  const m = document.getElementById('detail-models');
+  m.textContent = models.length ? `${models.length > 1 ? 'Mixed models: ' : 'Model: '}` +
+    models.map((x) => `${x.model}${x.resolutions.length ? ` at ${x.resolutions.join(', ')}` : ''} (${x.jobs} jobs)`)
+      .join('; ') : '';
+  m.classList.toggle('warning', models.length > 1);
   document.getElementById('cancel-campaign').disabled = !(c.state === 'active');
   document.getElementById('csv-link').href = `${API}/campaigns/${id}/windows?format=csv`;
   renderWindows();
@@ -417,6 +423,27 @@ async function refreshDetail() {
   renderLadders();
   renderDepositionChoice();
   renderDeposition();
+}
+
+// A job row's resolution as text: elements_across = N or spacing = S.
+function resolutionText(r) {
+  if (!r) return 'no mesh';
+  if (r.elements_across !== undefined) return `elements_across = ${r.elements_across}`;
+  return `spacing = ${siFormat(r.spacing, 'm')}`;
+}
+
+// The models a campaign's jobs ran (or will run) with, each with its
+// resolutions and number of jobs, so a sweep that changes model is seen.
+function modelsOf(jobs) {
+  const by = new Map();
+  for (const j of jobs) {
+    const name = j.model || '(scene bodies)';
+    if (!by.has(name)) by.set(name, { model: name, resolutions: new Set(), jobs: 0 });
+    const e = by.get(name);
+    if (j.resolution) e.resolutions.add(resolutionText(j.resolution));
+    e.jobs++;
+  }
+  return [...by.values()].map((e) => ({ ...e, resolutions: [...e.resolutions].sort((a, b) => a.localeCompare(b, 'en', { numeric: true })) }));
 }
 
 // Units of a campaign's parameter axes: the built-in ones (G_c, sigma_c, ...)
@@ -539,7 +566,8 @@ function renderMap() {
           callbacks: {
             label: (ctx) => {
               const j = ctx.raw.job;
-              return j ? `${fmt(j.velocity)} m/s: ${j.outcome || j.state} (${paramsText(j.params)})` :
+              return j ? `${fmt(j.velocity)} m/s: ${j.outcome || j.state} (${paramsText(j.params)}; ` +
+                `${j.model || 'scene bodies'}, ${resolutionText(j.resolution)})` :
                 `edge ${fmt(ctx.raw.x)} m/s`;
             },
           },
@@ -739,7 +767,10 @@ function ladderChart(canvas, l) {
           callbacks: {
             label: (ctx) => {
               const r = ctx.raw;
-              if (r.job) return `${fmt(r.job.velocity)} m/s, ${levelLabel(l, r.y)}: ${r.job.outcome || r.job.state}`;
+              if (r.job) {
+                return `${fmt(r.job.velocity)} m/s, ${levelLabel(l, r.y)}: ${r.job.outcome || r.job.state} ` +
+                  `(${r.job.model || 'scene bodies'})`;
+              }
               return `${r.edge} velocity at ${levelLabel(l, r.level)}: ${fmt(r.x)} ± ${fmt(r.half_width, 2)} m/s`;
             },
           },

@@ -184,6 +184,9 @@ async function ladderCampaign(page, url) {
   }, id);
   const levels = LADDER.fields[0].values;
   const radii = LADDER.fields[1].values;
+  const models = await page.textContent('#detail-models');
+  check(models === `Model: fe-axisym at ${levels.map((n) => `elements_across = ${n}`).join(', ')} (${api.jobs.length} jobs)`,
+    `campaign names its model and resolutions: ${models}`);
   check(api.ladders.length === radii.length, `API: one ladder per radius (${api.ladders.length})`);
 
   // The per-level maps, read from the DOM and the Chart.js instances.
@@ -360,6 +363,8 @@ async function main() {
     check(hist.velocity.includes('v_M') && hist.energy.includes('kinetic'), `job charts: ${JSON.stringify(hist)}`);
     await checkReadableCharts(page, ['map', 'chart-velocity', 'chart-energy', 'chart-area', 'deposition']);
     check(/model two-mass/.test(await page.textContent('#job-model')), 'job view names the two-mass model');
+    const twoMassModels = await page.textContent('#detail-models');
+    check(twoMassModels === `Model: two-mass (${jobs} jobs)`, `campaign names its model: ${twoMassModels}`);
 
     // Window of deposition against G_c: the maximum velocity (closed form)
     // at both values with its bracket as error bar; the critical velocity is
