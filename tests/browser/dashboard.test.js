@@ -189,6 +189,15 @@ async function ladderCampaign(page, url) {
     `campaign names its model and resolutions: ${models}`);
   check(api.ladders.length === radii.length, `API: one ladder per radius (${api.ladders.length})`);
 
+  // Two swept axes: the stick/rebound map gives each parameter set its row.
+  const sets = await page.evaluate(() => ({
+    axis: document.getElementById('map-axis').value,
+    rows: Chart.getChart('map').scales.y.ticks.map((t) => t.label),
+  }));
+  check(sets.axis === '(each parameter set)' && sets.rows.length === levels.length * radii.length &&
+    sets.rows.every((r) => /^elements_across = \d, radius = 1[05] µm$/.test(r)),
+  `map: one row per parameter set (${sets.rows.join(' | ')})`);
+
   // The per-level maps, read from the DOM and the Chart.js instances.
   const maps = await page.evaluate(() => [...document.querySelectorAll('#ladders .ladder')].map((d) => {
     const canvas = d.querySelector('canvas');
