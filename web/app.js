@@ -808,6 +808,7 @@ function renderLadders() {
 // shaded between them. Edges with an error from resolution where the campaign
 // has ladders, else the bracket midpoints with half the bracket as error; an
 // open edge is drawn at its outermost stick (triangle) without an error bar.
+
 // A ladder's edge: its estimate and error from resolution, or, where the
 // ladder has none (the edge is open at some level), the finest level's.
 function ladderEdge(l, kind) {
