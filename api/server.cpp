@@ -852,7 +852,17 @@ struct Server::Impl {
             {"finished_at", nullable(r.finished_at)},
             {"wall_seconds", nullable(r.wall_seconds)},
             {"exit_reason", r.exit_reason},
+            {"model", r.model ? json(*r.model) : json(nullptr)},
+            {"resolution", resolution_json(r)},
             {"links", {{"self", std::string(k_prefix) + "/jobs/" + r.point.job_hash}}}};
+  }
+
+  // The particle's resolution: {elements_across} (FE) or {spacing} (SPH, m);
+  // null for a model without a mesh (two-mass).
+  static json resolution_json(const campaign::CampaignJobRow& r) {
+    if (r.elements_across) return {{"elements_across", *r.elements_across}};
+    if (r.spacing) return {{"spacing", *r.spacing}};
+    return nullptr;
   }
 
   // The result file of a job, if it is a regular file inside the jobs folder.

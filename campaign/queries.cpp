@@ -7,7 +7,14 @@ std::vector<CampaignJobRow> campaign_jobs(Store& store, std::int64_t campaign_id
                                           std::int64_t limit) {
   Statement s = store.reader().prepare(
       "SELECT p.params_key, p.params, p.velocity, p.job_hash, p.origin, j.state, j.attempts, "
-      "j.started_at, j.finished_at, j.wall_seconds, j.exit_reason, r.outcome "
+      "j.started_at, j.finished_at, j.wall_seconds, j.exit_reason, r.outcome, "
+      "CASE WHEN json_type(j.scene, '$.two_mass') IS NOT NULL THEN 'two-mass' "
+      "ELSE json_extract(j.scene, '$.particle_impact.model.name') END, "
+      "(SELECT json_extract(e.value, '$.discretization.elements_across') "
+      " FROM json_each(j.scene, '$.bodies') e WHERE json_extract(e.value, '$.name') = 'particle'), "
+      "(SELECT json_extract(e.value, '$.discretization.element_size') "
+      " FROM json_each(j.scene, '$.bodies') e WHERE json_extract(e.value, '$.name') = 'particle' "
+      " AND json_extract(e.value, '$.discretization.type') = 'sph') "
       "FROM campaign_points p JOIN jobs j ON j.hash = p.job_hash "
       "LEFT JOIN results r ON r.job_hash = p.job_hash "
       "WHERE p.campaign_id = ?1 AND (?2 IS NULL OR j.state = ?2) "
@@ -30,6 +37,9 @@ std::vector<CampaignJobRow> campaign_jobs(Store& store, std::int64_t campaign_id
     r.wall_seconds = s.opt_real(9);
     r.exit_reason = s.opt_text(10).value_or("");
     r.outcome = s.opt_text(11);
+    r.model = s.opt_text(12);
+    r.elements_across = s.opt_int64(13);
+    r.spacing = s.opt_real(14);
     out.push_back(std::move(r));
   }
   return out;

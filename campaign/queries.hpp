@@ -25,6 +25,13 @@ struct CampaignJobRow {
   std::optional<double> wall_seconds;  // s
   std::string exit_reason;
   std::optional<std::string> outcome;  // the result's outcome, when there is one
+  // What the job's scene expanded into (set at submission, so also for
+  // queued jobs): the model (particle_impact.model.name, "two-mass" for a
+  // two-mass scene) and the particle body's resolution, elements across its
+  // radius (FE) or particle spacing (SPH).
+  std::optional<std::string> model;
+  std::optional<std::int64_t> elements_across;  // -
+  std::optional<double> spacing;                // m
 };
 
 // The campaign's points ordered by (parameter set, velocity), optionally only

@@ -1,5 +1,6 @@
 // /api/v1/campaigns: submit, poll to the end, windows in JSON and CSV,
-// pagination, idempotent retry, ETag 304, cancel. A real server on a port
+// pagination, each job's model and resolution, idempotent retry, ETag 304,
+// cancel. A real server on a port
 // the OS picks, a real SQLite file, real `splat run` jobs of the two-mass
 // model; every response checked against its schema.
 #include <cmath>
@@ -171,6 +172,61 @@ TEST(api_campaigns, pages_of_campaigns_and_jobs) {
   EXPECT_EQ(body_json(q)["jobs"].size(), 10u);
   auto s = c.Get(("/api/v1/campaigns/" + std::to_string(ids[0]) + "/jobs?state=succeeded").c_str());
   EXPECT_EQ(body_json(s)["jobs"].size(), 0u);
+}
+
+// Each job row names the model its scene expanded into and the particle's
+// resolution (set at submission, so queued jobs have them too): FE at
+// elements_across 4 and 6, SPH at spacing R / 4 and R / 6, two-mass none.
+TEST(api_campaigns, job_list_names_each_jobs_model_and_resolution) {
+  TempDir dir;
+  api::ServerOptions o = options_for(dir);
+  o.run_campaigns = false;
+  ServerHandle server(o);
+  httplib::Client c = server.client();
+  const double R = 1e-5;  // m
+  json spec = {{"name", "api-models"},
+               {"base_scene",
+                {{"name", "impact"},
+                 {"particle_impact",
+                  {{"particle", {{"material", "al-thesis"}, {"radius", R}}}, {"velocity", 300}}}}},
+               {"velocity", {{"pointer", "/particle_impact/velocity"}, {"values", {300}}}},
+               {"fields",
+                {{{"pointer", "/particle_impact/particle/discretization"},
+                  {"unit", "-"},
+                  {"values", {"fe", "sph"}}},
+                 {{"pointer", "/particle_impact/particle/elements_across"},
+                  {"unit", "-"},
+                  {"values", {4, 6}}}}}};
+  auto r = post_json(c, "/api/v1/campaigns", spec);
+  ASSERT_EQ(r->status, 202) << r->body;
+  const std::int64_t id = body_json(r)["id"];
+  const json jobs = body_json(c.Get(("/api/v1/campaigns/" + std::to_string(id) + "/jobs").c_str()));
+  EXPECT_EQ(schema_errors("api_job_list", jobs), "");
+  ASSERT_EQ(jobs["jobs"].size(), 4u) << jobs.dump();
+  for (const json& j : jobs["jobs"]) {
+    const std::string d = j["params"]["/particle_impact/particle/discretization"];
+    const int n = j["params"]["/particle_impact/particle/elements_across"];
+    if (d == "fe") {
+      EXPECT_EQ(j["model"], "fe-axisym") << j.dump();
+      EXPECT_EQ(j["resolution"], json({{"elements_across", n}})) << j.dump();
+    } else {
+      EXPECT_EQ(j["model"], "sph-3d-quarter") << j.dump();
+      ASSERT_TRUE(j["resolution"].contains("spacing")) << j.dump();
+      EXPECT_NEAR(j["resolution"]["spacing"].get<double>(), R / n, 1e-12 * R) << j.dump();
+    }
+  }
+
+  auto t = post_json(c, "/api/v1/campaigns", small_campaign("api-models-two-mass"));
+  ASSERT_EQ(t->status, 202) << t->body;
+  const json two_mass = body_json(c.Get(
+      ("/api/v1/campaigns/" + std::to_string(body_json(t)["id"].get<std::int64_t>()) + "/jobs")
+          .c_str()));
+  EXPECT_EQ(schema_errors("api_job_list", two_mass), "");
+  ASSERT_FALSE(two_mass["jobs"].empty());
+  for (const json& j : two_mass["jobs"]) {
+    EXPECT_EQ(j["model"], "two-mass");
+    EXPECT_TRUE(j["resolution"].is_null());
+  }
 }
 
 TEST(api_campaigns, idempotent_retry_returns_the_first_result) {
