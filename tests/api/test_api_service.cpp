@@ -204,6 +204,21 @@ TEST(api_service, health_metrics_materials_schemas) {
   EXPECT_NE(text.find("# TYPE splat_job_duration_seconds histogram"), std::string::npos);
 }
 
+// Submits `spec` and waits, up to `tries` x 10 ms, until `succeeded` of its
+// jobs have; returns the campaign id (0 when the submission was refused).
+std::int64_t submit_and_wait(httplib::Client& c, const json& spec, int succeeded, int tries) {
+  auto r = post_json(c, "/api/v1/campaigns", spec);
+  EXPECT_TRUE(r && r->status == 202) << (r ? r->body : "no response");
+  if (!r || r->status != 202) return 0;
+  const std::int64_t id = body_json(r)["id"];
+  const std::string self = "/api/v1/campaigns/" + std::to_string(id);
+  for (int i = 0; i < tries && body_json(c.Get(self.c_str()))["jobs"]["succeeded"] < succeeded;
+       ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return id;
+}
+
 TEST(api_service, sigterm_leaves_the_campaign_resumable) {
   TempDir dir;
   const std::string db = (dir.path / "store.db").string();
@@ -215,16 +230,8 @@ TEST(api_service, sigterm_leaves_the_campaign_resumable) {
     ServeProcess p({"--db", db, "--port", "0", "--workers", "1"});
     ASSERT_GT(p.port(), 0);
     httplib::Client c("127.0.0.1", p.port());
-    auto r = post_json(c, "/api/v1/campaigns", spec);
-    ASSERT_EQ(r->status, 202) << r->body;
-    id = body_json(r)["id"];
-    for (int i = 0; i < 500; ++i) {
-      if (body_json(c.Get(
-              ("/api/v1/campaigns/" + std::to_string(id)).c_str()))["jobs"]["succeeded"] >= 3) {
-        break;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    id = submit_and_wait(c, spec, 3, 500);
+    ASSERT_GT(id, 0);
     EXPECT_EQ(p.stop(SIGTERM, 20), 0);
   }
   {
@@ -279,13 +286,9 @@ TEST(api_service, a_full_disk_leaves_the_server_serving_and_blames_no_job) {
     ServeProcess p({"--db", db, "--port", "0", "--workers", "1"});
     ASSERT_GT(p.port(), 0);
     httplib::Client c("127.0.0.1", p.port());
-    auto r = post_json(c, "/api/v1/campaigns", spec);
-    ASSERT_EQ(r->status, 202) << r->body;
-    id = body_json(r)["id"];
+    id = submit_and_wait(c, spec, 3, 1000);
+    ASSERT_GT(id, 0);
     const std::string self = "/api/v1/campaigns/" + std::to_string(id);
-    for (int i = 0; i < 1000 && body_json(c.Get(self.c_str()))["jobs"]["succeeded"] < 3; ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
     ASSERT_TRUE(test_support::SmallTmpfs::fill(disk / "filler"));
     json doc;
     for (int i = 0; i < 600; ++i) {

@@ -150,16 +150,24 @@ TEST(cli, output_to_a_full_disk_exits_74_naming_the_reason) {
       << o.stdout_text;
 }
 
+// Writes DIR/NAME.json: a campaign over the two-mass verification scene with
+// the given `velocity` axis (JSON text); returns its path.
+std::filesystem::path two_mass_campaign(const std::filesystem::path& dir, const std::string& name,
+                                        const std::string& velocity) {
+  const std::filesystem::path path = dir / (name + ".json");
+  std::ofstream(path) << R"({"name": ")" << name << R"(", "base_scene": ")" << SPLAT_SOURCE_DIR
+                      << R"(/scenes/verification/two_mass.json", "velocity": )" << velocity << "}";
+  return path;
+}
+
 // A velocity range without end (a step below the spacing of doubles at
 // `from`) is refused at its field; it used to list speeds until
 // std::bad_alloc. Run under a 2 GB address-space limit so the old behaviour
 // fails fast instead of taking the machine's memory.
 TEST(cli, a_velocity_range_without_end_is_refused_at_its_field) {
   TempDir t;
-  const std::filesystem::path campaign = t.path / "endless.json";
-  std::ofstream(campaign) << R"({"name": "endless", "base_scene": ")" << SPLAT_SOURCE_DIR
-                          << R"(/scenes/verification/two_mass.json",
-      "velocity": {"range": {"from": 1000, "to": 1001, "step": 1e-20}}})";
+  const std::filesystem::path campaign = two_mass_campaign(
+      t.path, "endless", R"({"range": {"from": 1000, "to": 1001, "step": 1e-20}})");
   const auto r = run_command("ulimit -v 2000000; " + std::string(SPLAT_BINARY) + " sweep " +
                              campaign.string() + " --db " + (t.path / "c.db").string() + " 2>&1");
   EXPECT_EQ(r.code, 2) << r.stdout_text;
@@ -175,10 +183,8 @@ TEST(cli, windows_reads_a_store_on_a_read_only_file_system) {
   const std::filesystem::path disk = t.path / "disk";
   SmallTmpfs tmpfs(disk, 16L << 20);
   if (!tmpfs.mounted()) GTEST_SKIP() << tmpfs.why_not();
-  const std::filesystem::path campaign = t.path / "small.json";
-  std::ofstream(campaign) << R"({"name": "small", "base_scene": ")" << SPLAT_SOURCE_DIR
-                          << R"(/scenes/verification/two_mass.json",
-      "velocity": {"values": [0.2, 0.4, 0.6, 0.8]}})";
+  const std::filesystem::path campaign =
+      two_mass_campaign(t.path, "small", R"({"values": [0.2, 0.4, 0.6, 0.8]})");
   const std::string db = (disk / "c.db").string();
   auto o = run_splat("sweep " + campaign.string() + " --db " + db + " --workers 2");
   ASSERT_EQ(o.code, 0) << o.stdout_text;
