@@ -89,6 +89,17 @@ double triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
       {segment_distance(p, a, b), segment_distance(p, b, c), segment_distance(p, c, a)});
 }
 
+// Cell (i, j, l) of point p on a grid of cube cells of size `cell`, and the
+// hash of a cell (distinct cells may share one).
+std::array<long long, 3> cell_of(const Vec3& p, double cell) {
+  return {static_cast<long long>(std::floor(p.x() / cell)),
+          static_cast<long long>(std::floor(p.y() / cell)),
+          static_cast<long long>(std::floor(p.z() / cell))};
+}
+long long cell_hash(long long i, long long j, long long l) {
+  return (i * 73856093LL) ^ (j * 19349663LL) ^ (l * 83492791LL);
+}
+
 // Uniform grid of element bounding boxes.
 class ElementGrid {
  public:
@@ -118,14 +129,8 @@ class ElementGrid {
   }
 
  private:
-  std::array<long long, 3> key3(const Vec3& p) const {
-    return {static_cast<long long>(std::floor(p.x() / cell_)),
-            static_cast<long long>(std::floor(p.y() / cell_)),
-            static_cast<long long>(std::floor(p.z() / cell_))};
-  }
-  static long long hash(long long i, long long j, long long l) {
-    return (i * 73856093LL) ^ (j * 19349663LL) ^ (l * 83492791LL);
-  }
+  std::array<long long, 3> key3(const Vec3& p) const { return cell_of(p, cell_); }
+  static long long hash(long long i, long long j, long long l) { return cell_hash(i, j, l); }
   double cell_;
   std::unordered_map<long long, std::vector<int>> cells_;
   std::vector<int> large_;
@@ -204,14 +209,8 @@ class ParticleGrid {
   }
 
  private:
-  std::array<long long, 3> key3(const Vec3& p) const {
-    return {static_cast<long long>(std::floor(p.x() / cell_)),
-            static_cast<long long>(std::floor(p.y() / cell_)),
-            static_cast<long long>(std::floor(p.z() / cell_))};
-  }
-  static long long hash(long long i, long long j, long long l) {
-    return (i * 73856093LL) ^ (j * 19349663LL) ^ (l * 83492791LL);
-  }
+  std::array<long long, 3> key3(const Vec3& p) const { return cell_of(p, cell_); }
+  static long long hash(long long i, long long j, long long l) { return cell_hash(i, j, l); }
   double cell_;
   std::unordered_map<long long, std::vector<Vec3>> cells_;
 };

@@ -16,9 +16,12 @@ namespace {
 
 using nlohmann::json;
 
+// No result files (--out ''): tests running at once on the same scene would
+// otherwise write the same out/SCENE.h5, and HDF5's lock fails the second.
 json run(const std::string& scene, const std::string& sets = "") {
   const test_support::CommandOutput o = test_support::run_splat(
-      "run " + std::string(SPLAT_SOURCE_DIR) + "/" + scene + " --json --threads 1 " + sets, false);
+      "run " + std::string(SPLAT_SOURCE_DIR) + "/" + scene + " --json --threads 1 --out '' " + sets,
+      false);
   json s = json::parse(o.stdout_text, nullptr, false);
   EXPECT_FALSE(s.is_discarded()) << o.stdout_text;
   if (s.is_discarded()) return json::object();
