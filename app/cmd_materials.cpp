@@ -7,9 +7,16 @@
 //   splat materials --show NAME  one document as written, a library name or a
 //                                JSON file, checked first: an invalid one
 //                                prints its violations to stderr, exit 2
+//   splat materials --plot NAME [--out FILE]
+//                                CSV of the flow stress against plastic
+//                                strain at 1e-3, 1e3 and 1e6 /s and at 293 K
+//                                and T_melt / 2, isothermal, from the law's
+//                                own flow_stress (the solver's formula);
+//                                scripts/plot_flow_stress.py draws it
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -28,6 +35,8 @@ namespace {
 struct MaterialsOptions {
   bool json = false;
   std::string show;
+  std::string plot;
+  std::string out;
 };
 
 std::string fixed(double x, int decimals) {
@@ -209,6 +218,41 @@ int show_document(const std::string& name_or_path) {
   return 0;
 }
 
+// The flow-stress curves of --plot: plastic rates, 1/s, and temperatures, K
+// (room temperature and half the law's melting temperature), plastic strain
+// 0 to 1 in steps of 0.01.
+constexpr double plot_rates[] = {1e-3, 1e3, 1e6};
+constexpr int plot_points = 101;
+
+int write_flow_stress_csv(const std::string& name_or_path, std::string out) {
+  const Material m = load_material(name_or_path);
+  if (out.empty()) out = m.name + "-flow-stress.csv";
+  const double temperatures[] = {293.0, 0.5 * strength_references(m.strength).T_melt};
+  std::ostringstream csv;
+  csv << "strain_rate,temperature,plastic_strain,flow_stress\n";
+  char line[128];
+  for (double T : temperatures) {
+    for (double rate : plot_rates) {
+      for (int i = 0; i < plot_points; ++i) {
+        const double eps_p = 0.01 * i;
+        const double sigma = flow_stress(m.strength, ModelSwitches{}, eps_p, rate, T).value;
+        std::snprintf(line, sizeof line, "%g,%.6g,%.2f,%.9g\n", rate, T, eps_p, sigma);
+        csv << line;
+      }
+    }
+  }
+  std::ofstream f(out);
+  f << csv.str();
+  if (!f) {
+    std::fprintf(stderr, "splat materials: error: cannot write '%s'\n", out.c_str());
+    return 2;
+  }
+  std::printf("%s: %s flow stress, Pa, at %zu rates and 2 temperatures written to %s\n",
+              m.name.c_str(), strength_model_name(m.strength), std::size(plot_rates), out.c_str());
+  std::printf("plot: python3 scripts/plot_flow_stress.py %s\n", out.c_str());
+  return 0;
+}
+
 }  // namespace
 
 void register_materials(CLI::App& app, CommandTable& commands) {
@@ -217,10 +261,20 @@ void register_materials(CLI::App& app, CommandTable& commands) {
       app.add_subcommand("materials", "List the material library, or print one material document");
   CLI::Option* json_flag =
       sub->add_flag("--json", opts->json, "Print every library document as one JSON array");
-  sub->add_option("--show", opts->show,
-                  "Print one material document (library name or JSON file) after checking it")
-      ->excludes(json_flag);
+  CLI::Option* show =
+      sub->add_option("--show", opts->show,
+                      "Print one material document (library name or JSON file) after checking it")
+          ->excludes(json_flag);
+  CLI::Option* plot =
+      sub->add_option("--plot", opts->plot,
+                      "Write the flow stress against plastic strain of one material (library "
+                      "name or JSON file) at 1e-3, 1e3 and 1e6 /s, 293 K and T_melt / 2 as CSV")
+          ->excludes(json_flag)
+          ->excludes(show);
+  sub->add_option("--out", opts->out, "CSV file of --plot (default NAME-flow-stress.csv)")
+      ->needs(plot);
   commands.emplace_back(sub, [opts]() {
+    if (!opts->plot.empty()) return write_flow_stress_csv(opts->plot, opts->out);
     if (!opts->show.empty()) return show_document(opts->show);
     if (opts->json) return print_all_documents();
     return print_table();

@@ -19,6 +19,8 @@ mutations=(
   "solver/material/zerilli_armstrong.cpp|const double hard = za.C2 * root * thermal;|const double hard = za.C2 * root * root * thermal;|uniaxial_zerilli_armstrong.*"
   "solver/material/preston_tonks_wallace.cpp|std::erf(w.kappa * T_hat|std::erf(1.1 * w.kappa * T_hat|uniaxial_preston_tonks_wallace.*"
   "solver/material/preston_tonks_wallace.cpp|return {tau_s + a / w.p * std::log(inner)|return {tau_s - a / w.p * std::log(inner)|uniaxial_preston_tonks_wallace.*"
+  "solver/material/steinberg_guinan.hpp|1.0 - sg.B * (temp - sg.T_ref)|1.0 - 1.1 * sg.B * (temp - sg.T_ref)|material_library_sources.flow_stress_follows_the_source_closed_form"
+  "solver/material/steinberg_guinan.hpp|return {sg.Y_max * shear, 0.0, 0.0};|return {1.01 * sg.Y_max * shear, 0.0, 0.0};|material_library_sources.steinberg_guinan_saturates_at_the_table_y_max"
   "solver/material/strength_model.hpp|const double g = q_trial - three_g * dp - r.sigma_y;|const double g = q_trial - 1.02 * three_g * dp - r.sigma_y;|uniaxial_zerilli_armstrong.*"
   "solver/material/point_update.cpp|s *= std::max(q_trial - 3.0 * G_d * dp|s *= std::max(q_trial - 2.9 * G_d * dp|uniaxial_johnson_cook.*"
   "solver/material/point_update.cpp|st.T += mc.chi * w * J_new|st.T += w * J_new|adiabatic_heating.*"

@@ -18,13 +18,14 @@
 #include "solver/material/johnson_cook.hpp"
 #include "solver/material/model_switches.hpp"
 #include "solver/material/preston_tonks_wallace.hpp"
+#include "solver/material/steinberg_guinan.hpp"
 #include "solver/material/strength_law.hpp"
 #include "solver/material/zerilli_armstrong.hpp"
 
 namespace splat {
 
-using StrengthModel =
-    std::variant<JohnsonCookParams, ZerilliArmstrongParams, PrestonTonksWallaceParams>;
+using StrengthModel = std::variant<JohnsonCookParams, ZerilliArmstrongParams,
+                                   PrestonTonksWallaceParams, SteinbergGuinanParams>;
 
 // The "model" name of the law (johnson-cook, zerilli-armstrong, ...).
 inline const char* strength_model_name(const StrengthModel& s) {

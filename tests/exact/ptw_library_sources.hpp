@@ -37,7 +37,7 @@ inline PtwCurve curve_at_reference(const PtwSourceSet& s) {
   return c;
 }
 
-inline constexpr std::array<PtwSourceSet, 1> ptw_library_sources{{
+inline constexpr std::array<PtwSourceSet, 2> ptw_library_sources{{
     // Preston, Tonks & Wallace (2003), tantalum (p = 0), as Uintah's
     // PTWPlasticTa.xml and F_UNCLE's Ptw.py print it: G0 722 kbar, alpha
     // 0.23, 16.75 g/cm^3, 180.948 g/mol, T_melt 2996 deg C; T_ref and
@@ -52,6 +52,21 @@ inline constexpr std::array<PtwSourceSet, 1> ptw_library_sources{{
      186e9,
      0.34,
      140.0},
+    // Preston, Tonks & Wallace (2003), copper, as F_UNCLE's Ptw.py prints it
+    // (the eleven strength parameters also in impala's OFHC copper test):
+    // G0 518 kbar, alpha 0.20, 8.933 g/cm^3, T_melt 1084.88 deg C; molar mass
+    // 63.546 g/mol (impala; F_UNCLE's 64.54 taken as a slip); T_ref and
+    // eps_dot_0 ours; density, E, nu and c_p of cu-thesis (thesis Table 2.2).
+    {"cu-ofhc-ptw",
+     "Preston, Tonks & Wallace 2003, copper",
+     {0.025, 2.0, 0.0085, 0.00055, 0.11, 1e-5, 0.0001, 0.0001, 0.094, 0.575, 0.25, 51.8e9, 8933.0,
+      0.063546, 1.0, 1084.88 + 273.15},
+     0.20,
+     300.0,
+     8960.0,
+     124e9,
+     0.34,
+     385.0},
 }};
 
 }  // namespace splat::exact

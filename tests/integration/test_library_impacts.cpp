@@ -1,10 +1,11 @@
-// The library materials with a published Johnson-Cook or Preston-Tonks-Wallace
-// set (tests/exact/jc_library_sources.hpp, tests/exact/ptw_library_sources.hpp),
+// The library materials with a published Johnson-Cook, Preston-Tonks-Wallace
+// or Steinberg-Guinan set (tests/exact/jc_library_sources.hpp,
+// tests/exact/ptw_library_sources.hpp, tests/exact/sg_library_sources.hpp),
 // each as particle and substrate of scenes/impact_al_al.json at 300 and
 // 800 m/s: every run ends with a stick or rebound verdict, not a numerical
-// failure, and keeps its energy balance within 5 % (the sixteen runs take a
-// few seconds on one thread; docs/validation.md, "Material library", lists
-// what each run gives).
+// failure, and keeps its energy balance within 5 % (the twenty-four runs take
+// several seconds on one thread; docs/validation.md, "Material library",
+// lists what each run gives).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 
 #include "exact/jc_library_sources.hpp"
 #include "exact/ptw_library_sources.hpp"
+#include "exact/sg_library_sources.hpp"
 #include "support/scene_runs.hpp"
 
 namespace splat {
@@ -33,6 +35,7 @@ std::vector<std::string> published_sets() {
   std::vector<std::string> names;
   for (const exact::JcSourceSet& s : exact::jc_library_sources) names.emplace_back(s.material);
   for (const exact::PtwSourceSet& s : exact::ptw_library_sources) names.emplace_back(s.material);
+  for (const exact::SgSourceSet& s : exact::sg_library_sources) names.emplace_back(s.material);
   return names;
 }
 

@@ -310,11 +310,11 @@ TEST(material_lookup, unknown_name_lists_the_library) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.violations(),
               (Violations{{"",
-                           "unknown material 'unobtainium' (known: al-deck, al-thesis, "
+                           "unknown material 'unobtainium' (known: ag-sg, al-deck, al-thesis, "
                            "al-thesis-gf, al6061-t6-jc, cu-deck, cu-ofhc-jc, cu-ofhc-ptw, "
-                           "cu-thesis, fe-armco-jc, in718-jc, ni200-jc, ss316l-jc, "
-                           "steel-hopkinson, ta-ptw, ti6al4v-jc, ti6al4v-thesis; or give a path "
-                           "to a JSON file)"}}));
+                           "cu-thesis, fe-armco-jc, in718-jc, mg-az31b-sg, ni200-jc, ss316l-jc, "
+                           "steel-hopkinson, ta-ptw, ti6al4v-jc, ti6al4v-thesis, zn-sg; or give "
+                           "a path to a JSON file)"}}));
   }
 }
 
