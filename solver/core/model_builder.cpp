@@ -402,13 +402,10 @@ Model build_model(const Scene& scene) {
   };
   // SPH bodies: every particle as a pinball of radius half the spacing (the
   // thesis's "SPH radius": 1.25 um at 2.5 um spacing, 740 particles in a
-  // 12.5 um ball). Particles flow: a crater sweeps the substrate's first
-  // layers aside and bares particles that started deep inside, and the
-  // particle's own surface layers thin out at the jet. With the initial
-  // boundary layers alone (three spacings), the quarter Al/Al ball at
-  // 800 m/s and 10 spacings across R passed through such bared particles
-  // (116 particles overlapping by up to 0.83 spacing, 28 of the deepest on
-  // substrate particles that started below the layers).
+  // 12.5 um ball). Not only the initial boundary layers: particles flow, a
+  // crater sweeps the substrate's first layers aside and bares particles
+  // that started deep inside, and the particle's own surface layers thin out
+  // at the jet.
   auto particle_surface_of = [&](std::size_t b) {
     const SphBody& body = model.sph_bodies[model.body_refs[b].index];
     std::vector<int> ids;

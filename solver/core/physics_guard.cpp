@@ -343,21 +343,16 @@ std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& 
   figures.eroded_energy_fraction = energy.eroded / reference;
   figures.internal_energy_fraction = energy.internal / reference;
   char buf[320];
-  if (p.nodes_through > 0 && p.sph) {
-    std::snprintf(buf, sizeof buf,
-                  "interpenetration: %lld particle(s) through the SPH substrate (pinballs "
-                  "overlapping by more than %.2g spacing, or enclosed by substrate particles; "
-                  "deepest overlap %.3g m, %.2f spacings); the contact let the particle through",
-                  p.nodes_through, k_interpenetration_limit, p.max_depth, p.max_ratio);
-    reason = buf;
-    return figures.failed = StopReason::interpenetration;
-  }
   if (p.nodes_through > 0) {
-    std::snprintf(buf, sizeof buf,
-                  "interpenetration: %lld particle node(s) inside the substrate deeper than %.2g "
-                  "of the local element size (deepest %.3g m, %.2f element sizes); the contact "
-                  "let the particle through",
-                  p.nodes_through, k_interpenetration_limit, p.max_depth, p.max_ratio);
+    const char* format =
+        p.sph ? "interpenetration: %lld particle(s) through the SPH substrate (pinballs "
+                "overlapping by more than %.2g spacing, or enclosed by substrate particles; "
+                "deepest overlap %.3g m, %.2f spacings); the contact let the particle through"
+              : "interpenetration: %lld particle node(s) inside the substrate deeper than %.2g "
+                "of the local element size (deepest %.3g m, %.2f element sizes); the contact "
+                "let the particle through";
+    std::snprintf(buf, sizeof buf, format, p.nodes_through, k_interpenetration_limit, p.max_depth,
+                  p.max_ratio);
     reason = buf;
     return figures.failed = StopReason::interpenetration;
   }
