@@ -61,6 +61,106 @@ std::vector<int> elements_of_node(const FeBody& body, int g) {
   return out;
 }
 
+// A particle deformed less than this (||F - I||, Frobenius) keeps its
+// spherical pinball: its radius along any direction is then within this
+// fraction of R, -.
+constexpr double k_round_deformation = 0.01;
+// Largest pinball radius over R, -: bounds the search range.
+constexpr double k_max_pinball_stretch = 3.0;
+
+// Sets the deformed pinballs of SPH surface s from its body's deformation
+// gradients (ContactSurface::radius_along). reach bounds the largest
+// principal stretch: sigma_max(F) <= 1 + ||F - I||.
+void follow_particle_shapes(ContactSurface& s, const SphBody& body) {
+  s.inverse_stretch.resize(s.nodes.size());
+  s.reach.resize(s.nodes.size());
+  for (std::size_t k = 0; k < s.nodes.size(); ++k) {
+    const std::size_t i = static_cast<std::size_t>(s.nodes[k]) - body.node_begin;
+    const Mat3 F = body.F[i] * body.F_ref[i];
+    const double deformation = (F - Mat3::Identity()).norm();
+    const bool round = !(deformation > k_round_deformation) || !(F.determinant() > 0.0);
+    s.inverse_stretch[k] = round ? Mat3::Identity() : Mat3(F.inverse());
+    s.reach[k] = s.radius[k] * (round ? 1.0 : std::min(k_max_pinball_stretch, 1.0 + deformation));
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// A face's nodes, ascending (segments padded with -1): the same key for
+// the face seen from either of its elements.
+using FaceKey = std::array<int, 4>;
+FaceKey face_key(const std::array<int, 4>& f, int nodes_per_face) {
+  FaceKey k = f;
+  if (nodes_per_face == 2) k[2] = k[3] = -1;
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// Faces of element e, outward: the 4 segments of a quadrilateral (outward
+// normal on the right) or the 6 quadrilaterals of a hexahedron.
+std::vector<std::array<int, 4>> element_faces(const FeBody& body, std::size_t e, bool axisym) {
+  const auto& c = body.conn[e];
+  std::vector<std::array<int, 4>> out;
+  if (axisym) {
+    for (int a = 0; a < 4; ++a) out.push_back({c[a], c[(a + 1) % 4], -1, -1});
+    return out;
+  }
+  for (const auto& f : k_hex_faces) out.push_back({c[f[0]], c[f[1]], c[f[2]], c[f[3]]});
+  return out;
+}
+
+// Faces on the boundary of the active elements of a body, each with its
+// element, in element order, leaving out the faces whose keys are in
+// `excluded` (sorted).
+std::vector<std::pair<std::array<int, 4>, int>> active_boundary_faces(
+    const FeBody& body, bool axisym, const std::vector<FaceKey>& excluded) {
+  const int npf = axisym ? 2 : 4;
+  std::vector<std::pair<std::array<int, 4>, int>> all;
+  std::vector<FaceKey> keys;
+  for (std::size_t e = 0; e < body.num_elements(); ++e) {
+    if (!body.active[e]) continue;
+    for (const auto& f : element_faces(body, e, axisym)) {
+      all.push_back({f, static_cast<int>(e)});
+      keys.push_back(face_key(f, npf));
+    }
+  }
+  std::vector<std::size_t> order(all.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return keys[a] != keys[b] ? keys[a] < keys[b] : a < b;
+  });
+  std::vector<std::uint8_t> shared(all.size(), 0);
+  for (std::size_t k = 0; k + 1 < order.size(); ++k) {
+    if (keys[order[k]] == keys[order[k + 1]]) shared[order[k]] = shared[order[k + 1]] = 1;
+  }
+  std::vector<std::pair<std::array<int, 4>, int>> out;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (shared[k] || std::binary_search(excluded.begin(), excluded.end(), keys[k])) continue;
+    out.push_back(all[k]);
+  }
+  return out;
+}
+
+// The body's initial boundary faces that `surface` leaves out (symmetry
+// planes, the axis, supported faces), sorted: they never become contact
+// faces; a face that erosion exposes is never one of them.
+std::vector<FaceKey> faces_left_out(const FeBody& body, bool axisym,
+                                    const ContactSurface& surface) {
+  const int npf = axisym ? 2 : 4;
+  std::vector<FaceKey> in;
+  for (const auto& f : surface.faces) in.push_back(face_key(f, npf));
+  std::sort(in.begin(), in.end());
+  std::vector<FaceKey> out;
+  for (const auto& [f, e] : active_boundary_faces(body, axisym, {})) {
+    const FaceKey k = face_key(f, npf);
+    if (!std::binary_search(in.begin(), in.end(), k)) out.push_back(k);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace
 
 void ContactInterface::attach_bodies(const std::vector<FeBody>& bodies, std::size_t mb,
@@ -89,6 +189,8 @@ void ContactInterface::attach_bodies(const std::vector<FeBody>& bodies, std::siz
     }
     if (!common.empty()) master_face_element_[f] = common.front();
   }
+  master_left_out_ = faces_left_out(master, axisymmetric_, master_);
+  slave_left_out_ = faces_left_out(slave, axisymmetric_, slave_);
 }
 
 void ContactInterface::attach_bodies(const std::vector<FeBody>& fe, const std::vector<SphBody>& sph,
@@ -132,51 +234,12 @@ void ContactInterface::attach_bodies(const std::vector<FeBody>& fe, const std::v
   }
 }
 
-namespace {
-
-// Segments (global node pairs, outward normal on the right) on the boundary
-// of the active quadrilaterals of an axisymmetric body, each with its
-// element, in element order; segments with both ends on the axis are left
-// out (the axis is no surface).
-std::vector<std::pair<std::array<int, 4>, int>> active_boundary_segments(const FeBody& body,
-                                                                         const NodeSet& nodes) {
-  std::vector<std::pair<std::array<int, 4>, int>> all;
-  std::vector<std::pair<long long, long long>> keys;  // (min node, max node) of each
-  for (std::size_t e = 0; e < body.num_elements(); ++e) {
-    if (!body.active[e]) continue;
-    const auto& c = body.conn[e];
-    for (int a = 0; a < 4; ++a) {
-      const int i = c[a], j = c[(a + 1) % 4];
-      all.push_back({{i, j, -1, -1}, static_cast<int>(e)});
-      keys.push_back({std::min(i, j), std::max(i, j)});
-    }
-  }
-  std::vector<std::size_t> order(all.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return keys[a] != keys[b] ? keys[a] < keys[b] : a < b;
-  });
-  std::vector<std::uint8_t> shared(all.size(), 0);
-  for (std::size_t k = 0; k + 1 < order.size(); ++k) {
-    if (keys[order[k]] == keys[order[k + 1]]) shared[order[k]] = shared[order[k + 1]] = 1;
-  }
-  std::vector<std::pair<std::array<int, 4>, int>> out;
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    if (shared[k]) continue;
-    const auto& f = all[k].first;
-    if (nodes.x0[f[0]].x() == 0.0 && nodes.x0[f[1]].x() == 0.0) continue;
-    out.push_back(all[k]);
-  }
-  return out;
-}
-
-}  // namespace
-
-void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const NodeSet& nodes) {
-  if (!axisymmetric_ || master_sph_ || slave_sph_ || master_index_ >= bodies.size() ||
+void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies) {
+  if (master_sph_ || slave_sph_ || master_index_ >= bodies.size() ||
       slave_index_ >= bodies.size() || master_face_element_.empty()) {
     return;
   }
+  const int npf = master_.nodes_per_face();
   // Master: mark the faces of eroded elements, append the exposed ones.
   const FeBody& mb = bodies[master_index_];
   master_face_dead_.resize(master_.faces.size(), 0);
@@ -184,13 +247,12 @@ void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const N
     const int e = master_face_element_[f];
     if (e >= 0 && !mb.active[e]) master_face_dead_[f] = 1;
   }
-  std::vector<std::pair<long long, long long>> known;
-  for (const auto& f : master_.faces) known.push_back({std::min(f[0], f[1]), std::max(f[0], f[1])});
+  std::vector<FaceKey> known;
+  for (const auto& f : master_.faces) known.push_back(face_key(f, npf));
   std::sort(known.begin(), known.end());
   std::vector<std::array<int, 4>> faces = master_.faces;
-  for (const auto& [f, e] : active_boundary_segments(mb, nodes)) {
-    const std::pair<long long, long long> key{std::min(f[0], f[1]), std::max(f[0], f[1])};
-    if (std::binary_search(known.begin(), known.end(), key)) continue;
+  for (const auto& [f, e] : active_boundary_faces(mb, axisymmetric_, master_left_out_)) {
+    if (std::binary_search(known.begin(), known.end(), face_key(f, npf))) continue;
     faces.push_back(f);
     master_face_element_.push_back(e);
     master_face_dead_.push_back(0);
@@ -201,7 +263,9 @@ void ContactInterface::follow_erosion(const std::vector<FeBody>& bodies, const N
   // Slave: the boundary of its active elements; per-node records by node id.
   const FeBody& sb = bodies[slave_index_];
   std::vector<std::array<int, 4>> slave_faces;
-  for (const auto& fe : active_boundary_segments(sb, nodes)) slave_faces.push_back(fe.first);
+  for (const auto& fe : active_boundary_faces(sb, axisymmetric_, slave_left_out_)) {
+    slave_faces.push_back(fe.first);
+  }
   ContactSurface slave = make_contact_surface(slave_.kind, std::move(slave_faces));
   if (slave.nodes == slave_.nodes && slave.faces.size() == slave_.faces.size()) return;
   const std::size_t n = slave.nodes.size();
@@ -619,6 +683,9 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
                                      const std::vector<SphBody>& sph) {
   if (!(dt > 0.0)) return;
   const bool adhesive = settings_.adhesion.has_value();
+  if (master_sph_ && master_index_ < sph.size())
+    follow_particle_shapes(master_, sph[master_index_]);
+  if (slave_sph_ && slave_index_ < sph.size()) follow_particle_shapes(slave_, sph[slave_index_]);
   std::vector<DetectedPair> pairs = detect(nodes);
   stats_.pairs = static_cast<long long>(pairs.size());
   stats_.in_contact = 0;

@@ -151,14 +151,15 @@ class ContactInterface {
   void attach_bodies(const std::vector<FeBody>& fe, const std::vector<SphBody>& sph,
                      bool master_is_sph, std::size_t master, bool slave_is_sph, std::size_t slave);
 
-  // After elements eroded (axisymmetric FE pairs): the segments their
-  // removal exposed join the surfaces, so the contact follows the eroded
-  // surface instead of letting the other body pass into the hole. Master:
-  // new segments appended (indices kept), segments of eroded elements no
-  // longer detected. Slave: rebuilt from the boundary of the active
-  // elements; the per-node link records move with their nodes, new nodes
-  // start unlinked. Segments on the axis (r = 0 at both ends) are left out.
-  void follow_erosion(const std::vector<FeBody>& bodies, const NodeSet& nodes);
+  // After elements eroded (FE pairs): the faces their removal exposed join
+  // the surfaces, so the contact follows the eroded surface instead of
+  // letting the other body pass into the hole. Master: new faces appended
+  // (indices kept), faces of eroded elements no longer detected. Slave:
+  // rebuilt from the boundary of the active elements; the per-node link
+  // records move with their nodes, new nodes start unlinked. The initial
+  // boundary faces the surfaces left out (the axis, symmetry planes,
+  // supported faces) stay out.
+  void follow_erosion(const std::vector<FeBody>& bodies);
 
   // Stage 3 (Lagrange): corrects v and x of the nodes in contact.
   // `bodies` are the model's bodies (the adhesion tests read their states).
@@ -179,8 +180,8 @@ class ContactInterface {
   const std::string& slave_body() const { return slave_body_; }
   const ContactSurface& master_surface() const { return master_; }
   const ContactSurface& slave_surface() const { return slave_; }
-  // False for a master face whose element was eroded (followed in
-  // axisymmetric runs only; other faces always read live).
+  // False for a master face whose element was eroded (FE pairs; other
+  // faces always read live).
   bool master_face_live(std::size_t f) const {
     return f >= master_face_dead_.size() || master_face_dead_[f] == 0;
   }
@@ -272,7 +273,9 @@ class ContactInterface {
   // (CSR) and the master-body element of each master face.
   std::vector<int> slave_elem_offsets_, slave_elem_entries_;
   std::vector<int> master_face_element_;
-  std::vector<std::uint8_t> master_face_dead_;      // 1: the face's element was eroded
+  std::vector<std::uint8_t> master_face_dead_;  // 1: the face's element was eroded
+  // Sorted node keys of the initial boundary faces each surface left out.
+  std::vector<std::array<int, 4>> master_left_out_, slave_left_out_;
   std::size_t master_index_ = 0, slave_index_ = 0;  // in the model's (FE or SPH) bodies
   bool master_sph_ = false, slave_sph_ = false;     // the side is an SPH body
   // Adhesion, per slave node (SoA): state, work, area, last master face,

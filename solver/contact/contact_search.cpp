@@ -66,10 +66,11 @@ constexpr std::size_t search_chunk = 64;
 constexpr std::size_t min_parallel_slaves = 128;
 constexpr std::size_t min_parallel_faces = 512;
 
-// Pinball geometry of point p against particle x_m of radius R_m.
-PairGeometry project_on_particle(const Vec3& p, const Vec3& xm, double R_m) {
+// Pinball geometry of point p against master particle f of surface s.
+PairGeometry project_on_particle(const Vec3& p, const ContactSurface& s, int f,
+                                 const std::vector<Vec3>& x) {
   PairGeometry g;
-  const Vec3 d = p - xm;
+  const Vec3 d = p - x[s.faces[f][0]];
   const double dist = d.norm();
   if (!(dist > 0.0)) return g;
   g.valid = true;
@@ -79,7 +80,7 @@ PairGeometry project_on_particle(const Vec3& p, const Vec3& xm, double R_m) {
   g.tangent1 = g.normal.cross(a).normalized();
   g.tangent2 = g.normal.cross(g.tangent1);
   g.weights = {1.0, 0.0, 0.0, 0.0};
-  g.gap = dist - R_m;
+  g.gap = dist - s.radius_along(f, g.normal);
   return g;
 }
 
@@ -93,7 +94,7 @@ std::array<Vec3, 4> face_points(const ContactSurface& s, int f, const std::vecto
 
 PairGeometry project(const ContactSurface& s, int f, const Vec3& p, const std::vector<Vec3>& x) {
   if (s.kind == DetectionKind::particle_pinball) {
-    return project_on_particle(p, x[s.faces[f][0]], s.node_radius(f));
+    return project_on_particle(p, s, f, x);
   }
   const auto pts = face_points(s, f, x);
   if (s.kind == DetectionKind::node_on_segment) return project_on_segment(p, pts[0], pts[1]);
@@ -114,15 +115,15 @@ bool better(const DetectedPair& a, const DetectedPair& b) {
 
 // Tests slave node k against face f and keeps the better pair in `best`, or,
 // with `all`, appends every pair in range to it.
-void consider(const ContactSurface& master, int f, int k, const Vec3& p, double r_slave,
+void consider(const ContactSurface& master, int f, const ContactSurface& slave, int k,
               const std::vector<Vec3>& x, const SearchSettings& st, double size, DetectedPair& best,
               bool& found, std::vector<DetectedPair>* all) {
   DetectedPair c;
   c.slave = k;
   c.face = f;
-  c.geometry = project(master, f, p, x);
+  c.geometry = project(master, f, x[slave.nodes[k]], x);
   if (!c.geometry.valid) return;
-  c.geometry.gap -= r_slave;
+  c.geometry.gap -= slave.radius_along(k, c.geometry.normal);
   if (c.geometry.distance_outside > st.outside_tolerance) return;
   if (c.geometry.gap > st.search_margin * size || c.geometry.gap < -st.capture_depth * size) return;
   if (all) {
@@ -151,7 +152,7 @@ void append_all(std::vector<DetectedPair>& all, std::vector<DetectedPair>& out) 
 }  // namespace
 
 double face_size(const ContactSurface& s, int f, const std::vector<Vec3>& x) {
-  if (s.kind == DetectionKind::particle_pinball) return 2.0 * s.node_radius(f);
+  if (s.kind == DetectionKind::particle_pinball) return 2.0 * s.node_reach(f);
   const auto pts = face_points(s, f, x);
   if (s.kind == DetectionKind::node_on_segment) return (pts[1] - pts[0]).norm();
   return std::sqrt(quad_area(pts));
@@ -183,13 +184,11 @@ std::vector<DetectedPair> find_pairs_all_pairs(const ContactSurface& master,
   const bool pinball = master.kind == DetectionKind::particle_pinball;
   std::vector<DetectedPair> all;
   for (std::size_t k = 0; k < slave.nodes.size(); ++k) {
-    const Vec3& p = x[slave.nodes[k]];
     DetectedPair best;
     bool found = false;
     for (std::size_t f = 0; f < master.faces.size(); ++f) {
-      consider(master, static_cast<int>(f), static_cast<int>(k), p,
-               slave.node_radius(static_cast<int>(k)), x, st, sizes[f], best, found,
-               pinball ? &all : nullptr);
+      consider(master, static_cast<int>(f), slave, static_cast<int>(k), x, st, sizes[f], best,
+               found, pinball ? &all : nullptr);
     }
     if (pinball) append_all(all, out);
     if (found) out.push_back(best);
@@ -205,8 +204,10 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
   if (nf == 0 || slave.nodes.empty()) return out;
   const int npf = master.nodes_per_face();
   const double pinball = master.kind == DetectionKind::particle_pinball ? 1.0 : 0.0;
-  const double slave_reach =
-      slave.radius.empty() ? 0.0 : *std::max_element(slave.radius.begin(), slave.radius.end());
+  double slave_reach = 0.0;
+  for (std::size_t k = 0; k < slave.nodes.size(); ++k) {
+    slave_reach = std::max(slave_reach, slave.node_reach(static_cast<int>(k)));
+  }
   // Face bounding boxes grown by the capture range (the projection tolerance
   // included), so a slave node within range of a face lies inside its box.
   std::vector<Vec3> lo(nf), hi(nf);
@@ -279,8 +280,8 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
       bool found = false;
       for (int f : it->second) {
         if ((p.array() < lo[f].array()).any() || (p.array() > hi[f].array()).any()) continue;
-        consider(master, f, static_cast<int>(s), p, slave.node_radius(static_cast<int>(s)), x, st,
-                 sizes[f], best, found, pinball > 0.0 ? &all : nullptr);
+        consider(master, f, slave, static_cast<int>(s), x, st, sizes[f], best, found,
+                 pinball > 0.0 ? &all : nullptr);
       }
       if (pinball > 0.0) append_all(all, part);
       if (found) part.push_back(best);

@@ -27,6 +27,7 @@
 // pairs (unit test).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -50,6 +51,11 @@ struct ContactSurface {
   // Pinball radius of each node (same order as `nodes`), m; empty for FE
   // surfaces (radius 0). Required for particle_pinball surfaces.
   std::vector<double> radius;
+  // Deformed pinballs (SPH bodies; set every step by the contact interface):
+  // each particle's inverse deformation gradient from its initial state, and
+  // the largest radius its pinball reaches, m. Empty: spheres of `radius`.
+  std::vector<Mat3> inverse_stretch;
+  std::vector<double> reach;
 
   int nodes_per_face() const {
     switch (kind) {
@@ -63,6 +69,18 @@ struct ContactSurface {
     return 4;
   }
   double node_radius(int k) const { return radius.empty() ? 0.0 : radius[k]; }
+  double node_reach(int k) const { return reach.empty() ? node_radius(k) : reach[k]; }
+  // Radius of node k's pinball along the unit vector n, m. A deformed
+  // particle's pinball is its initial ball mapped by F, an ellipsoid of
+  // radius R / |F^-1 n| along n, but never smaller than R: where a surface
+  // layer is stretched its particles part, and only their stretched extent
+  // keeps the other body out of the gaps; where it is compressed, R is the
+  // distance the physics guard holds the bodies to.
+  double radius_along(int k, const Vec3& n) const {
+    const double r = node_radius(k);
+    if (inverse_stretch.empty()) return r;
+    return std::clamp(r / (inverse_stretch[k] * n).norm(), r, reach[k]);
+  }
 };
 
 // Builds the node lists of a surface from its faces.
@@ -79,7 +97,7 @@ ContactSurface make_particle_surface(const std::vector<int>& particles,
 double slave_node_area(const ContactSurface& s, int k, const std::vector<Vec3>& x);
 
 // Size of master face f on x: segment length, sqrt(area), or a particle's
-// diameter 2 R, m.
+// largest diameter 2 reach, m.
 double face_size(const ContactSurface& s, int f, const std::vector<Vec3>& x);
 
 struct SearchSettings {

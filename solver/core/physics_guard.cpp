@@ -9,6 +9,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "solver/mesh/mesh.hpp"
+
 namespace splat {
 namespace {
 
@@ -51,10 +53,6 @@ bool ray_crosses(const Vec3& p, const Vec3& d, const Vec3& a, const Vec3& b, con
   if (v < 0.0 || u + v > 1.0) return false;
   return e2.dot(r) / det > 0.0;
 }
-
-// Faces of a hexahedron (hex8.hpp node order), outward.
-constexpr std::array<std::array<int, 4>, 6> k_hex_faces{
-    {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
 
 // Crossing-number test of p in the hexahedron x[0..7], faces split in two
 // triangles; the ray direction is skewed off the mesh axes.

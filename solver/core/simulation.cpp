@@ -209,7 +209,7 @@ bool Simulation::Impl::internal_forces(RunSummary& s) {
       energy.eroded += (er.internal + er.kinetic) * scale();
     }
     if (!r.to_erode.empty()) {
-      for (ContactInterface& c : model.contacts) c.follow_erosion(model.bodies, n);
+      for (ContactInterface& c : model.contacts) c.follow_erosion(model.bodies);
     }
     if (r.return_failed) {
       s.outcome = RunOutcome::unstable;

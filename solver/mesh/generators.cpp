@@ -97,22 +97,12 @@ void add_boundary_segments(AxisymMesh& m) {
   }
 }
 
-// Faces of the unit-cube hexahedron, counter-clockwise seen from outside.
-constexpr std::array<std::array<int, 4>, 6> hex_faces = {{
-    {0, 3, 2, 1},  // z = 0
-    {4, 5, 6, 7},  // z = 1
-    {0, 1, 5, 4},  // y = 0
-    {2, 3, 7, 6},  // y = 1
-    {3, 0, 4, 7},  // x = 0
-    {1, 2, 6, 5},  // x = 1
-}};
-
 // As add_boundary_segments, for hexahedron faces whose four nodes share a bit.
 void add_boundary_faces(HexMesh& m) {
   m.boundary_faces.clear();
   m.face_boundary.clear();
   for (const auto& h : m.hexes) {
-    for (const auto& f : hex_faces) {
+    for (const auto& f : k_hex_faces) {
       const std::uint32_t bits = m.node_boundary[h[f[0]]] & m.node_boundary[h[f[1]]] &
                                  m.node_boundary[h[f[2]]] & m.node_boundary[h[f[3]]];
       if (bits == 0) continue;

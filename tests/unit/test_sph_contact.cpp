@@ -1,7 +1,8 @@
 // SPH detection kinds of the contact interface (contact_search.hpp):
 //  - pinball SPH-SPH and SPH particles on FE quads: the bucket search finds
 //    exactly the pairs of the all-pairs search on jittered particle clouds;
-//  - the pinball geometry: gap |x_s - x_m| - R_s - R_m along the centre line;
+//  - the pinball geometry: gap |x_s - x_m| - R_s - R_m along the centre line,
+//    with radii that follow each particle's deformation;
 //  - adhesive areas of thesis 2.2.4 on the links: pi R^2 with the mean radius
 //    for SPH-SPH, min(face area, pi R^2) for SPH on an FE face.
 #include <gtest/gtest.h>
@@ -116,6 +117,42 @@ TEST(SphContactSearch, pinball_gap_is_centre_distance_minus_radii) {
   EXPECT_NEAR((pairs[0].geometry.normal - x[1] / dist).norm(), 0.0, 1e-15);
   EXPECT_NEAR(pairs[0].geometry.normal.dot(pairs[0].geometry.tangent1), 0.0, 1e-15);
   EXPECT_NEAR(slave_node_area(slave, 0, x), std::numbers::pi * 0.25e-12, 1e-27);
+}
+
+// A stretched surface layer: two master particles 4 R apart (their layer
+// stretched twice along x), a slave particle of radius R in the gap between
+// them. As spheres they just touch it (gap 0) and a slave would slip into
+// the gap; as the ellipsoids their deformation makes of the initial balls
+// (radius 2 R along x), each overlaps it by R. Compression never shrinks a
+// pinball below R, and a rotation leaves it round.
+TEST(SphContactSearch, deformed_pinballs_follow_the_stretch_of_their_particles) {
+  const double R = 0.5e-6;
+  std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(4 * R, 0, 0), Vec3(2 * R, 0, 0)};
+  ContactSurface master = make_particle_surface({0, 1}, {R, R});
+  const ContactSurface slave = make_particle_surface({2}, {R});
+  auto gaps = [&] {
+    std::vector<double> g;
+    for (const DetectedPair& p : find_pairs_all_pairs(master, slave, x, SearchSettings{})) {
+      g.push_back(p.geometry.gap);
+    }
+    return g;
+  };
+  auto deform = [&](const Mat3& F, double reach) {
+    master.inverse_stretch.assign(2, F.inverse());
+    master.reach.assign(2, reach);
+  };
+  const std::vector<double> round = gaps();
+  ASSERT_EQ(round.size(), 2u);
+  EXPECT_NEAR(round[0], 0.0, 1e-18);
+  deform(Eigen::Vector3d(2.0, 1.0, 0.5).asDiagonal(), 2.5 * R);
+  for (double g : gaps()) EXPECT_NEAR(g, -R, 1e-18);
+  EXPECT_NEAR(master.radius_along(0, Vec3::UnitZ()), R, 1e-18);  // compressed: stays R
+  EXPECT_NEAR(master.radius_along(0, Vec3(1, 0, 0.2).normalized()), R * std::sqrt(1.04 / 0.41),
+              1e-18);
+  deform(Eigen::Vector3d(2.0, 1.0, 0.5).asDiagonal(), 1.5 * R);
+  EXPECT_NEAR(master.radius_along(0, Vec3::UnitX()), 1.5 * R, 1e-18);  // bounded by reach
+  deform(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix(), 1.2 * R);
+  for (double g : gaps()) EXPECT_NEAR(g, 0.0, 1e-18);
 }
 
 // Two particles pressed together (or a particle onto an FE face) bond on
