@@ -17,8 +17,9 @@ each failure naming the README line and the rule:
   heading of its file;
 - pointer: every `--set`/`--set-levels` JSON pointer is a field of
   schemas/scene.schema.json (`--set` creates missing objects, so the schema,
-  not the scene file, says what may be set); an inline `--set` example is
-  also applied to the README's scene in a real run;
+  not the scene file, says what may be set); an inline `--set` example, or
+  an inline `{"base": ...}` material as the particle's, is also applied to
+  the README's scene in a real run;
 - material: every library material named exists, and the library has as
   many metals as the README says;
 - run: the cheap commands run for real in a temporary folder (FE impacts at
@@ -701,6 +702,9 @@ def main(argv):
                    and len(c.argv) > 2 and c.argv[1] == "run"]
         if earlier:
             scene = earlier[-1].argv[2]
+        if span.startswith("{") and '"base"' in span and scene:
+            # An inline material document, as the particle's material.
+            span = "--set '/particle_impact/particle/material=%s'" % span
         if span.startswith("--set ") and scene:
             words = shlex.split(span)
             c = Command(n, f"splat run {scene} --threads 1 --out {README_SCRATCH}/set-example "
