@@ -63,10 +63,6 @@ void write_file(const std::filesystem::path& file, const std::string& text) {
   }
 }
 
-std::filesystem::path self_executable() {
-  return std::filesystem::read_symlink("/proc/self/exe");
-}
-
 // Cores this process may run on (its CPU affinity: a container or taskset
 // limit counts), at least 1.
 int usable_cores() {
@@ -308,8 +304,11 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   const SceneResolver resolve = options.resolver ? options.resolver : splat_scene_resolver();
   const std::string version =
       options.solver_version.empty() ? solver_version_string() : options.solver_version;
-  const std::filesystem::path program =
-      options.job_program.empty() ? self_executable() : options.job_program;
+  // Resolved at each launch: a splat rebuilt under a running campaign is the
+  // one its next jobs run.
+  const auto program = [&] {
+    return options.job_program.empty() ? this_executable() : options.job_program;
+  };
   const std::filesystem::path jobs_dir =
       options.jobs_dir.empty() ? std::filesystem::path(store.path().string() + ".jobs")
                                : options.jobs_dir;
@@ -375,7 +374,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     write_file(dir / "scene.json", job.scene + "\n");
     ProcessSpec ps;
     ps.argv = {
-        program.string(),       "run",       (dir / "scene.json").string(),   "--json", "--out",
+        program().string(),     "run",       (dir / "scene.json").string(),   "--json", "--out",
         (dir / "out").string(), "--threads", std::to_string(spec.job.threads)};
     ps.stdout_file = dir / "stdout.json";
     ps.stderr_file = dir / "stderr.txt";
@@ -512,10 +511,11 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
 
   bool cancelled = false;
   if (use_slurm) {
-    SlurmRound round{store, cid, spec, program, jobs_dir, options.slurm, owner, {}, {}};
+    SlurmRound round{store, cid, spec, program(), jobs_dir, options.slurm, owner, {}, {}};
     round.cancel_requested = cancel_requested;
     round.on_job_end = [&] { report_progress(); };
     for (;;) {
+      round.program = program();
       const SlurmRoundResult rr = run_slurm_round(round);
       started += rr.jobs_submitted;
       if (rr.cancelled) {
