@@ -1,9 +1,12 @@
 #include "campaign/manager.hpp"
 
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -74,6 +77,17 @@ int usable_cores() {
 
 // Retries a job whose process could not be started gets at least.
 constexpr int k_spawn_retries = 3;
+
+// A program file that exists but cannot be executed is being written (ld
+// writes its output in place and makes it executable at the end: splat
+// rebuilt under a running campaign). Waited for, up to a minute, so that a
+// job that could not start it does not use up its attempts at once.
+void wait_while_being_written(const std::string& program, const std::atomic<bool>& cancel) {
+  for (int naps = 0; naps < 600 && !cancel; ++naps) {  // of 100 ms
+    if (access(program.c_str(), F_OK) != 0 || access(program.c_str(), X_OK) == 0) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+}
 
 // A failure that may pass on another attempt: queued again while retries
 // are left.
@@ -383,6 +397,9 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     ps.environment = job_environment;
     ++started;
     const ProcessResult pr = run_process(ps);
+    if (pr.end == ProcessEnd::spawn_failed) {
+      wait_while_being_written(find_program(ps.argv[0]), cancel_running);
+    }
     JobEnd e = interpret(job, pr, dir, spec.job);
     if (e.host_fault) {
       // Not the job's fault: it runs again once the host has room, and this

@@ -172,6 +172,51 @@ TEST(campaign_executor, a_missing_job_program_fails_each_job_clearly) {
   }
 }
 
+// Whether a job under `jobs_dir` could not start its program.
+bool a_job_could_not_start(const fs::path& jobs_dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(jobs_dir, ec)) {
+    for (const std::string& l : lines_of(e.path() / "stderr.txt"))
+      if (l.find("cannot execute") != std::string::npos) return true;
+  }
+  return false;
+}
+
+// A job program being written (ld writes its output in place and makes it
+// executable at the end: a rebuild under a running campaign): a job that
+// could not start it waits until it is executable before going back to the
+// queue, instead of using up its attempts at once.
+TEST(campaign_executor, a_job_program_being_written_is_waited_for) {
+  TempDir t;
+  const fs::path program = t.path / "job";
+  fs::copy_file(SPLAT_FAKE_JOB, program);
+  const auto exec = fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec;
+  fs::permissions(program, exec, fs::perm_options::remove);
+  ManagerOptions o = fake_options(1);
+  o.job_program = program;
+  Store store(t.path / "c.db");
+  // The "link" ends a second after a job first could not start, or at once
+  // when a job failed.
+  std::thread linker([&] {
+    for (int i = 0; i < 3000 && !a_job_could_not_start(t.path / "c.db.jobs"); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    for (int i = 0; i < 100; ++i) {
+      const auto cs = store.campaigns();
+      if (!cs.empty() && store.job_counts(cs[0].id).failed > 0) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    fs::permissions(program, fs::perms::owner_exec, fs::perm_options::add);
+  });
+  const SweepReport r = run_sweep(
+      store, fake_campaign("being-written", {json::object({{"threshold", 5}})}, {1.0, 2.0}), o);
+  linker.join();
+  EXPECT_EQ(r.counts.succeeded, 2);
+  for (const PointStatus& p : store.points(r.campaign_id)) {
+    EXPECT_EQ(p.state, JobState::succeeded) << p.point.velocity << ": " << p.exit_reason;
+  }
+}
+
 TEST(campaign_executor, cancellation_stops_running_jobs_and_queued_ones_never_start) {
   TempDir t;
   const fs::path db = t.path / "c.db";
