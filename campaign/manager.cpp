@@ -78,13 +78,20 @@ int usable_cores() {
 // Retries a job whose process could not be started gets at least.
 constexpr int k_spawn_retries = 3;
 
-// A program file that exists but cannot be executed is being written (ld
-// writes its output in place and makes it executable at the end: splat
-// rebuilt under a running campaign). Waited for, up to a minute, so that a
-// job that could not start it does not use up its attempts at once.
+// A program file that cannot be executed yet and was written within the last
+// minute is being written (ld writes its output in place and makes it
+// executable at the end: splat rebuilt under a running campaign).
+bool being_written(const std::string& program) {
+  std::error_code ec;
+  const auto written = std::filesystem::last_write_time(program, ec);
+  if (ec || access(program.c_str(), X_OK) == 0) return false;
+  return std::filesystem::file_time_type::clock::now() - written < std::chrono::minutes(1);
+}
+
+// Waits while `program` is being written, so that a job that could not
+// start it does not use up its attempts at once.
 void wait_while_being_written(const std::string& program, const std::atomic<bool>& cancel) {
-  for (int naps = 0; naps < 600 && !cancel; ++naps) {  // of 100 ms
-    if (access(program.c_str(), F_OK) != 0 || access(program.c_str(), X_OK) == 0) return;
+  while (!cancel && being_written(program)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
 }

@@ -154,21 +154,28 @@ TEST(campaign_executor, crashes_timeouts_and_bad_output_are_recorded_while_other
   }
 }
 
-// A program that cannot be started (missing, or being rebuilt under a
-// running campaign) is the host's fault: each job is tried again a few
-// times (whatever its retries, 1 here) before it fails.
+// A program that cannot be started (missing, or a file that is not
+// executable and was not written for a minute) is the host's fault: each
+// job is tried again a few times (whatever its retries, 1 here) before it
+// fails.
 TEST(campaign_executor, a_missing_job_program_fails_each_job_clearly) {
   TempDir t;
-  Store store(t.path / "c.db");
-  ManagerOptions o = fake_options();
-  o.job_program = t.path / "no-such-program";
-  const SweepReport r = run_sweep(store, fake_campaign("missing", {json::object()}, {1.0, 2.0}), o);
-  EXPECT_EQ(r.counts.failed, 2);
-  for (const PointStatus& p : store.points(r.campaign_id)) {
-    EXPECT_NE(p.exit_reason.find("could not start: cannot execute"), std::string::npos)
-        << p.exit_reason;
-    EXPECT_NE(p.exit_reason.find("on attempt 4, no retries left"), std::string::npos)
-        << p.exit_reason;
+  const fs::path not_a_program = t.path / "notes.txt";
+  std::ofstream(not_a_program) << "not a program\n";
+  fs::last_write_time(not_a_program, fs::file_time_type::clock::now() - std::chrono::minutes(2));
+  for (const fs::path& program : {t.path / "no-such-program", not_a_program}) {
+    Store store(t.path / (program.filename().string() + ".db"));
+    ManagerOptions o = fake_options();
+    o.job_program = program;
+    const SweepReport r =
+        run_sweep(store, fake_campaign("missing", {json::object()}, {1.0, 2.0}), o);
+    EXPECT_EQ(r.counts.failed, 2);
+    for (const PointStatus& p : store.points(r.campaign_id)) {
+      EXPECT_NE(p.exit_reason.find("could not start: cannot execute"), std::string::npos)
+          << p.exit_reason;
+      EXPECT_NE(p.exit_reason.find("on attempt 4, no retries left"), std::string::npos)
+          << p.exit_reason;
+    }
   }
 }
 
