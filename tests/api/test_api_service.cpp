@@ -4,15 +4,12 @@
 // without redoing finished jobs. Also the command-line refusal of a public
 // address without a token.
 #include <arpa/inet.h>
-#include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 
 #include <atomic>
 #include <cerrno>
-#include <cstdio>
 #include <mutex>
 #include <vector>
 
