@@ -1,9 +1,12 @@
 #include "campaign/manager.hpp"
 
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -63,10 +66,6 @@ void write_file(const std::filesystem::path& file, const std::string& text) {
   }
 }
 
-std::filesystem::path self_executable() {
-  return std::filesystem::read_symlink("/proc/self/exe");
-}
-
 // Cores this process may run on (its CPU affinity: a container or taskset
 // limit counts), at least 1.
 int usable_cores() {
@@ -78,6 +77,24 @@ int usable_cores() {
 
 // Retries a job whose process could not be started gets at least.
 constexpr int k_spawn_retries = 3;
+
+// A program file that cannot be executed yet and was written within the last
+// minute is being written (ld writes its output in place and makes it
+// executable at the end: splat rebuilt under a running campaign).
+bool being_written(const std::string& program) {
+  std::error_code ec;
+  const auto written = std::filesystem::last_write_time(program, ec);
+  if (ec || access(program.c_str(), X_OK) == 0) return false;
+  return std::filesystem::file_time_type::clock::now() - written < std::chrono::minutes(1);
+}
+
+// Waits while `program` is being written, so that a job that could not
+// start it does not use up its attempts at once.
+void wait_while_being_written(const std::string& program, const std::atomic<bool>& cancel) {
+  while (!cancel && being_written(program)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+}
 
 // A failure that may pass on another attempt: queued again while retries
 // are left.
@@ -308,8 +325,11 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
   const SceneResolver resolve = options.resolver ? options.resolver : splat_scene_resolver();
   const std::string version =
       options.solver_version.empty() ? solver_version_string() : options.solver_version;
-  const std::filesystem::path program =
-      options.job_program.empty() ? self_executable() : options.job_program;
+  // Resolved at each launch: a splat rebuilt under a running campaign is the
+  // one its next jobs run.
+  const auto program = [&] {
+    return options.job_program.empty() ? this_executable() : options.job_program;
+  };
   const std::filesystem::path jobs_dir =
       options.jobs_dir.empty() ? std::filesystem::path(store.path().string() + ".jobs")
                                : options.jobs_dir;
@@ -375,7 +395,7 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     write_file(dir / "scene.json", job.scene + "\n");
     ProcessSpec ps;
     ps.argv = {
-        program.string(),       "run",       (dir / "scene.json").string(),   "--json", "--out",
+        program().string(),     "run",       (dir / "scene.json").string(),   "--json", "--out",
         (dir / "out").string(), "--threads", std::to_string(spec.job.threads)};
     ps.stdout_file = dir / "stdout.json";
     ps.stderr_file = dir / "stderr.txt";
@@ -384,6 +404,9 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
     ps.environment = job_environment;
     ++started;
     const ProcessResult pr = run_process(ps);
+    if (pr.end == ProcessEnd::spawn_failed) {
+      wait_while_being_written(find_program(ps.argv[0]), cancel_running);
+    }
     JobEnd e = interpret(job, pr, dir, spec.job);
     if (e.host_fault) {
       // Not the job's fault: it runs again once the host has room, and this
@@ -512,10 +535,11 @@ SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptio
 
   bool cancelled = false;
   if (use_slurm) {
-    SlurmRound round{store, cid, spec, program, jobs_dir, options.slurm, owner, {}, {}};
+    SlurmRound round{store, cid, spec, program(), jobs_dir, options.slurm, owner, {}, {}};
     round.cancel_requested = cancel_requested;
     round.on_job_end = [&] { report_progress(); };
     for (;;) {
+      round.program = program();
       const SlurmRoundResult rr = run_slurm_round(round);
       started += rr.jobs_submitted;
       if (rr.cancelled) {

@@ -41,7 +41,7 @@ struct Progress {
 
 struct ManagerOptions {
   int workers = 2;
-  std::filesystem::path job_program;             // empty = this executable (/proc/self/exe)
+  std::filesystem::path job_program;             // empty = this executable, found at each launch
   std::filesystem::path jobs_dir;                // empty = "<db file>.jobs"
   std::string solver_version;                    // empty = solver_version_string()
   SceneResolver resolver;                        // empty = splat_scene_resolver()

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <string_view>
+#include <system_error>
 #include <thread>
 
 namespace splat::campaign {
@@ -82,6 +83,17 @@ std::string find_program(const std::string& name) {
     start = end + 1;
   }
   return name;
+}
+
+std::filesystem::path this_executable() {
+  std::error_code ec;
+  std::string path = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+  if (ec) return "/proc/self/exe";
+  // The kernel appends this once the file this process started from is
+  // removed or replaced (a rebuild): the path itself names the new file.
+  constexpr std::string_view deleted = " (deleted)";
+  if (path.ends_with(deleted)) path.resize(path.size() - deleted.size());
+  return path;
 }
 
 ProcessResult run_process(const ProcessSpec& spec_in) {

@@ -43,6 +43,11 @@ struct ProcessResult {
 // The path of a program name looked up in PATH (a name with a '/' is kept).
 std::string find_program(const std::string& name);
 
+// The path on disk of this process's executable, read anew at each call: a
+// file renamed or rebuilt over it since this process started is the one
+// named ("/proc/self/exe" when the path cannot be read).
+std::filesystem::path this_executable();
+
 // Runs the child to its end (blocking the calling thread). argv[0] without a
 // '/' is looked up in PATH first.
 ProcessResult run_process(const ProcessSpec& spec);

@@ -154,21 +154,73 @@ TEST(campaign_executor, crashes_timeouts_and_bad_output_are_recorded_while_other
   }
 }
 
-// A program that cannot be started (missing, or being rebuilt under a
-// running campaign) is the host's fault: each job is tried again a few
-// times (whatever its retries, 1 here) before it fails.
+// A program that cannot be started (missing, or a file that is not
+// executable and was not written for a minute) is the host's fault: each
+// job is tried again a few times (whatever its retries, 1 here) before it
+// fails.
 TEST(campaign_executor, a_missing_job_program_fails_each_job_clearly) {
   TempDir t;
+  const fs::path not_a_program = t.path / "notes.txt";
+  std::ofstream(not_a_program) << "not a program\n";
+  fs::last_write_time(not_a_program, fs::file_time_type::clock::now() - std::chrono::minutes(2));
+  for (const fs::path& program : {t.path / "no-such-program", not_a_program}) {
+    Store store(t.path / (program.filename().string() + ".db"));
+    ManagerOptions o = fake_options();
+    o.job_program = program;
+    const SweepReport r =
+        run_sweep(store, fake_campaign("missing", {json::object()}, {1.0, 2.0}), o);
+    EXPECT_EQ(r.counts.failed, 2);
+    for (const PointStatus& p : store.points(r.campaign_id)) {
+      EXPECT_NE(p.exit_reason.find("could not start: cannot execute"), std::string::npos)
+          << p.exit_reason;
+      EXPECT_NE(p.exit_reason.find("on attempt 4, no retries left"), std::string::npos)
+          << p.exit_reason;
+    }
+  }
+}
+
+// Whether a job under `jobs_dir` could not start its program.
+bool a_job_could_not_start(const fs::path& jobs_dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(jobs_dir, ec)) {
+    for (const std::string& l : lines_of(e.path() / "stderr.txt"))
+      if (l.find("cannot execute") != std::string::npos) return true;
+  }
+  return false;
+}
+
+// A job program being written (ld writes its output in place and makes it
+// executable at the end: a rebuild under a running campaign): a job that
+// could not start it waits until it is executable before going back to the
+// queue, instead of using up its attempts at once.
+TEST(campaign_executor, a_job_program_being_written_is_waited_for) {
+  TempDir t;
+  const fs::path program = t.path / "job";
+  fs::copy_file(SPLAT_FAKE_JOB, program);
+  const auto exec = fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec;
+  fs::permissions(program, exec, fs::perm_options::remove);
+  ManagerOptions o = fake_options(1);
+  o.job_program = program;
   Store store(t.path / "c.db");
-  ManagerOptions o = fake_options();
-  o.job_program = t.path / "no-such-program";
-  const SweepReport r = run_sweep(store, fake_campaign("missing", {json::object()}, {1.0, 2.0}), o);
-  EXPECT_EQ(r.counts.failed, 2);
+  // The "link" ends a second after a job first could not start, or at once
+  // when a job failed.
+  std::thread linker([&] {
+    for (int i = 0; i < 3000 && !a_job_could_not_start(t.path / "c.db.jobs"); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    for (int i = 0; i < 100; ++i) {
+      const auto cs = store.campaigns();
+      if (!cs.empty() && store.job_counts(cs[0].id).failed > 0) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    fs::permissions(program, fs::perms::owner_exec, fs::perm_options::add);
+  });
+  const SweepReport r = run_sweep(
+      store, fake_campaign("being-written", {json::object({{"threshold", 5}})}, {1.0, 2.0}), o);
+  linker.join();
+  EXPECT_EQ(r.counts.succeeded, 2);
   for (const PointStatus& p : store.points(r.campaign_id)) {
-    EXPECT_NE(p.exit_reason.find("could not start: cannot execute"), std::string::npos)
-        << p.exit_reason;
-    EXPECT_NE(p.exit_reason.find("on attempt 4, no retries left"), std::string::npos)
-        << p.exit_reason;
+    EXPECT_EQ(p.state, JobState::succeeded) << p.point.velocity << ": " << p.exit_reason;
   }
 }
 
