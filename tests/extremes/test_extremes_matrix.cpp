@@ -128,12 +128,19 @@ Cell run_and_check(const json& scene, double v, bool adhesion) {
   return c;
 }
 
-// Prints a rung's table and leaves it in build/test-artifacts/extremes_NAME.md.
-void publish(const std::string& name, const std::string& table) {
-  std::printf("%s\n", table.c_str());
+// Leaves a rung's table in build/test-artifacts/extremes_NAME.md: after
+// each row, so that a rung stopped before its end (the full 3D rungs take
+// hours) keeps the rows it measured.
+void write_table(const std::string& name, const std::string& table) {
   const auto dir = std::filesystem::path(SPLAT_BUILD_DIR) / "test-artifacts";
   std::filesystem::create_directories(dir);
   std::ofstream(dir / ("extremes_" + name + ".md")) << table;
+}
+
+// Prints a rung's finished table and leaves it as above.
+void publish(const std::string& name, const std::string& table) {
+  std::printf("%s\n", table.c_str());
+  write_table(name, table);
 }
 
 void run_rung(const Rung& rung) {
@@ -155,9 +162,12 @@ void run_rung(const Rung& rung) {
               << " adhesion " << adhesion << ": " << c.problem << " (" << c.text << ")";
           ++counts[c.text];
           table += " " + c.text + (c.problem.empty() ? "" : " (!)") + " |";
+          std::printf("%s %s adhesion %d, %d across, %g m/s: %s\n", rung.fidelity.c_str(),
+                      pair.name.c_str(), adhesion ? 1 : 0, across, v, c.text.c_str());
           std::fflush(stdout);
         }
         table += "\n";
+        write_table(rung.fidelity, table + "\n(unfinished: the rows above are done)\n");
       }
     }
   }
