@@ -84,10 +84,6 @@ void follow_particle_shapes(ContactSurface& s, const SphBody& body) {
   }
 }
 
-}  // namespace
-
-namespace {
-
 // A face's nodes, ascending (segments padded with -1): the same key for
 // the face seen from either of its elements.
 using FaceKey = std::array<int, 4>;

@@ -33,11 +33,8 @@ struct AxisymMesh {
   std::vector<std::uint32_t> segment_boundary;        // BoundaryBit per segment
 };
 
-// 3D hexahedral mesh. Node order per hexahedron is that of the unit cube
-// 0=(0,0,0) 1=(1,0,0) 2=(1,1,0) 3=(0,1,0) 4=(0,0,1) 5=(1,0,1) 6=(1,1,1)
-// 7=(0,1,1) mapped into place, so the signed volume is positive.
-// Faces of the unit-cube hexahedron by local node, counter-clockwise seen
-// from outside.
+// Faces of the unit-cube hexahedron (HexMesh node order) by local node,
+// counter-clockwise seen from outside.
 inline constexpr std::array<std::array<int, 4>, 6> k_hex_faces{{
     {0, 3, 2, 1},  // z = 0
     {4, 5, 6, 7},  // z = 1
@@ -47,6 +44,9 @@ inline constexpr std::array<std::array<int, 4>, 6> k_hex_faces{{
     {1, 2, 6, 5},  // x = 1
 }};
 
+// 3D hexahedral mesh. Node order per hexahedron is that of the unit cube
+// 0=(0,0,0) 1=(1,0,0) 2=(1,1,0) 3=(0,1,0) 4=(0,0,1) 5=(1,0,1) 6=(1,1,1)
+// 7=(0,1,1) mapped into place, so the signed volume is positive.
 struct HexMesh {
   std::vector<Vec3> nodes;                         // m
   std::vector<std::array<int, 8>> hexes;           // node indices, positive volume
