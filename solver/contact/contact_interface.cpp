@@ -61,26 +61,12 @@ std::vector<int> elements_of_node(const FeBody& body, int g) {
   return out;
 }
 
-// A particle deformed less than this (||F - I||, Frobenius) keeps its
-// spherical pinball: its radius along any direction is then within this
-// fraction of R, -.
-constexpr double k_round_deformation = 0.01;
-// Largest pinball radius over R, -: bounds the search range.
-constexpr double k_max_pinball_stretch = 3.0;
-
 // Sets the deformed pinballs of SPH surface s from its body's deformation
-// gradients (ContactSurface::radius_along). reach bounds the largest
-// principal stretch: sigma_max(F) <= 1 + ||F - I||.
+// gradients (set_pinball_shape, ContactSurface::radius_along).
 void follow_particle_shapes(ContactSurface& s, const SphBody& body) {
-  s.inverse_stretch.resize(s.nodes.size());
-  s.reach.resize(s.nodes.size());
   for (std::size_t k = 0; k < s.nodes.size(); ++k) {
     const std::size_t i = static_cast<std::size_t>(s.nodes[k]) - body.node_begin;
-    const Mat3 F = body.F[i] * body.F_ref[i];
-    const double deformation = (F - Mat3::Identity()).norm();
-    const bool round = !(deformation > k_round_deformation) || !(F.determinant() > 0.0);
-    s.inverse_stretch[k] = round ? Mat3::Identity() : Mat3(F.inverse());
-    s.reach[k] = s.radius[k] * (round ? 1.0 : std::min(k_max_pinball_stretch, 1.0 + deformation));
+    set_pinball_shape(s, static_cast<int>(k), body.F[i] * body.F_ref[i]);
   }
 }
 

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <unordered_map>
 
+#include <Eigen/Eigenvalues>
+
 #include "solver/common/parallel.hpp"
 
 namespace splat {
@@ -55,6 +57,25 @@ ContactSurface make_particle_surface(const std::vector<int>& particles,
   ContactSurface s = make_contact_surface(DetectionKind::particle_pinball, std::move(faces));
   s.radius = std::move(r);  // nodes ascending = faces ascending (distinct particles)
   return s;
+}
+
+void set_pinball_shape(ContactSurface& s, int k, const Mat3& F) {
+  const std::size_t n = s.nodes.size();
+  if (s.inverse_stretch.size() != n) s.inverse_stretch.assign(n, Mat3::Identity());
+  if (s.reach.size() != n) s.reach = s.radius;
+  const std::size_t kk = static_cast<std::size_t>(k);
+  const double R = s.radius[kk];
+  const double deformation = (F - Mat3::Identity()).norm();
+  if (!(deformation > k_round_pinball_deformation) || !(F.determinant() > 0.0)) {
+    s.inverse_stretch[kk] = Mat3::Identity();
+    s.reach[kk] = R;
+    return;
+  }
+  Eigen::SelfAdjointEigenSolver<Mat3> eig;
+  eig.computeDirect(F.transpose() * F, Eigen::EigenvaluesOnly);
+  const double largest_stretch = std::sqrt(std::max(eig.eigenvalues()(2), 0.0));
+  s.inverse_stretch[kk] = F.inverse();
+  s.reach[kk] = R * std::clamp(largest_stretch, 1.0, k_max_pinball_stretch);
 }
 
 namespace {

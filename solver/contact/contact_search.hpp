@@ -83,6 +83,22 @@ struct ContactSurface {
   }
 };
 
+// A particle deformed less than this (||F - I||, Frobenius) keeps its
+// spherical pinball: its radius along any direction is then within this
+// fraction of R, -.
+inline constexpr double k_round_pinball_deformation = 0.01;
+// Largest pinball radius over R, -: bounds the search range.
+inline constexpr double k_max_pinball_stretch = 3.0;
+
+// Gives pinball k of a particle_pinball surface the shape of its particle's
+// deformation gradient F (from the initial state): inverse_stretch F^-1 and
+// reach R times the largest principal stretch sigma_max(F) (the exact
+// largest radius of the ellipsoid, so a rotation leaves the reach at R),
+// clamped to [R, k_max_pinball_stretch R]. A nearly undeformed, inverted or
+// non-finite F leaves the pinball a sphere of radius R. Sizes the shape
+// arrays on first use.
+void set_pinball_shape(ContactSurface& s, int k, const Mat3& F);
+
 // Builds the node lists of a surface from its faces.
 ContactSurface make_contact_surface(DetectionKind kind, std::vector<std::array<int, 4>> faces);
 // A particle_pinball surface of the given particles (global ids) and radii (m).

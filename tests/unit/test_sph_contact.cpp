@@ -155,6 +155,38 @@ TEST(SphContactSearch, deformed_pinballs_follow_the_stretch_of_their_particles) 
   for (double g : gaps()) EXPECT_NEAR(g, 0.0, 1e-18);
 }
 
+// The shape each particle's deformation gradient gives its pinball: the
+// reach is R times the largest principal stretch (so a rigid rotation leaves
+// the pinball round), bounded by k_max_pinball_stretch; nearly undeformed,
+// inverted and non-finite states keep the sphere.
+TEST(SphContactSearch, pinball_shape_follows_the_principal_stretches) {
+  const double R = 0.5e-6;
+  ContactSurface s = make_particle_surface({0}, {R});
+  const Mat3 Q = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  auto shape = [&](const Mat3& F) {
+    set_pinball_shape(s, 0, F);
+    return s.reach[0];
+  };
+  EXPECT_NEAR(shape(Q), R, 1e-12 * R);
+  for (const Vec3& n : {Vec3(Vec3::UnitX()), Vec3(Vec3(1, -1, 2).normalized())}) {
+    EXPECT_NEAR(s.radius_along(0, n), R, 1e-12 * R);
+  }
+  const Mat3 stretched = Q * Eigen::Vector3d(1.5, 1.0, 0.8).asDiagonal();
+  EXPECT_NEAR(shape(stretched), 1.5 * R, 1e-12 * R);
+  EXPECT_NEAR(s.radius_along(0, Q * Vec3::UnitX()), 1.5 * R, 1e-12 * R);
+  EXPECT_NEAR(s.radius_along(0, Q * Vec3::UnitZ()), R, 1e-12 * R);  // compressed: R
+  EXPECT_NEAR(shape(Eigen::Vector3d(4.0, 1.0, 0.25).asDiagonal()), k_max_pinball_stretch * R,
+              1e-12 * R);
+  const Mat3 nearly_identity = Mat3::Identity() + 0.003 * Mat3::Ones();  // norm 0.009
+  EXPECT_EQ(shape(nearly_identity), R);
+  EXPECT_TRUE(s.inverse_stretch[0].isIdentity(0.0));
+  EXPECT_EQ(shape(Eigen::Vector3d(-1.0, 2.0, 1.0).asDiagonal()), R);  // inverted
+  Mat3 broken = stretched;
+  broken(1, 2) = std::nan("");
+  EXPECT_EQ(shape(broken), R);
+  EXPECT_TRUE(s.inverse_stretch[0].isIdentity(0.0));
+}
+
 // Two particles pressed together (or a particle onto an FE face) bond on
 // first touch; the link's area is the thesis 2.2.4 area.
 TEST(SphContactAdhesion, link_areas_follow_thesis_2_2_4) {
