@@ -392,7 +392,8 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
                     &r.guard.max_interpenetration,
                     &r.guard.interpenetration_ratio,
                     &r.guard.eroded_energy_fraction,
-                    &r.guard.internal_energy_fraction}) {
+                    &r.guard.internal_energy_fraction,
+                    &r.guard.plastic_work_excess}) {
     *x = finite_or_zero(*x);
   }
   s.impact = r;

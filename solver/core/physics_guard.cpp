@@ -340,6 +340,8 @@ std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& 
       std::max(energy.initial_total + std::max(energy.external_work, 0.0), 1e-300);
   figures.eroded_energy_fraction = energy.eroded / reference;
   figures.internal_energy_fraction = energy.internal / reference;
+  figures.plastic_work_excess =
+      (energy.plastic_work - energy.internal - std::max(energy.eroded, 0.0)) / reference;
   char buf[320];
   if (p.nodes_through > 0) {
     const char* format =
@@ -368,6 +370,15 @@ std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& 
                   figures.internal_energy_fraction, in.energy_limit);
     reason = buf;
     return figures.failed = StopReason::negative_internal_energy;
+  }
+  if (figures.plastic_work_excess > in.energy_limit) {
+    std::snprintf(buf, sizeof buf,
+                  "plastic work exceeds the internal energy by %.3g of the reference energy "
+                  "(limit %.3g): the strength law booked more plastic work and heat than the "
+                  "stresses received (strain increments reversing from step to step)",
+                  figures.plastic_work_excess, in.energy_limit);
+    reason = buf;
+    return figures.failed = StopReason::plastic_work_excess;
   }
   figures.failed.reset();
   return std::nullopt;

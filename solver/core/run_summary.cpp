@@ -156,6 +156,7 @@ nlohmann::json to_json(const RunSummary& s) {
                   {"nodes_through", g.nodes_through},
                   {"eroded_energy_fraction", g.eroded_energy_fraction},
                   {"internal_energy_fraction", g.internal_energy_fraction},
+                  {"plastic_work_excess", g.plastic_work_excess},
                   {"failed", name_or_empty(g.failed)}};
   }
   j["output"] = {{"hdf5", path_or_null(s.hdf5_path)}, {"xdmf", path_or_null(s.xdmf_path)}};

@@ -114,6 +114,8 @@ struct GuardFigures {
   long long nodes_through = 0;            // nodes deeper than the limit
   double eroded_energy_fraction = 0.0;    // -, eroded energy over the reference energy
   double internal_energy_fraction = 0.0;  // -, internal energy over the reference energy
+  double plastic_work_excess = 0.0;       // -, (plastic work - internal - eroded energy) over
+                                          //   the reference energy (physics_guard.hpp)
   std::optional<StopReason> failed;       // the failed check, none when all passed
 };
 

@@ -19,6 +19,7 @@ enum class StopReason {
   interpenetration,
   negative_eroded_energy,
   negative_internal_energy,
+  plastic_work_excess,  // more plastic work than internal energy
   // Numerical checks of every step (simulation.cpp).
   non_finite,
   time_step_collapse,
@@ -38,7 +39,7 @@ enum class StopReason {
   end_time_predicted,     // rebound of free masses still opening at the end time
 };
 
-inline constexpr NameTable<StopReason, 22> k_stop_reason_names{{
+inline constexpr NameTable<StopReason, 23> k_stop_reason_names{{
     {StopReason::end_time, "end-time"},
     {StopReason::verdict_settled, "verdict-settled"},
     {StopReason::max_time, "max-time"},
@@ -47,6 +48,7 @@ inline constexpr NameTable<StopReason, 22> k_stop_reason_names{{
     {StopReason::interpenetration, "interpenetration"},
     {StopReason::negative_eroded_energy, "negative-eroded-energy"},
     {StopReason::negative_internal_energy, "negative-internal-energy"},
+    {StopReason::plastic_work_excess, "plastic-work-excess"},
     {StopReason::non_finite, "non-finite"},
     {StopReason::time_step_collapse, "time-step-collapse"},
     {StopReason::energy_balance, "energy-balance"},

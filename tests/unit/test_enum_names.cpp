@@ -65,6 +65,7 @@ TEST(EnumNames, stop_reason_names_are_the_ones_results_hold) {
                                                                "interpenetration",
                                                                "negative-eroded-energy",
                                                                "negative-internal-energy",
+                                                               "plastic-work-excess",
                                                                "non-finite",
                                                                "time-step-collapse",
                                                                "energy-balance",

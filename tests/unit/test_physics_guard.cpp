@@ -97,5 +97,26 @@ TEST(PhysicsGuardSph, check_physics_names_the_failure) {
   EXPECT_NE(reason.find("SPH substrate"), std::string::npos) << reason;
 }
 
+// The plastic work is part of the internal energy: a run whose strength law
+// booked more plastic work than the internal (plus eroded) energy by more
+// than the energy limit fails, one within it passes.
+TEST(PhysicsGuardSph, plastic_work_beyond_the_internal_energy_fails) {
+  const Model m = quarter_sph_model();
+  EnergyBudget e;
+  e.initial_total = 1.0;
+  e.internal = 0.55;
+  e.eroded = 0.05;
+  GuardFigures figures;
+  std::string reason;
+  e.plastic_work = 0.6 + 0.9 * k_in.energy_limit;
+  EXPECT_FALSE(check_physics(m, e, k_in, figures, reason).has_value()) << reason;
+  EXPECT_NEAR(figures.plastic_work_excess, 0.9 * k_in.energy_limit, 1e-12);
+  e.plastic_work = 0.6 + 1.1 * k_in.energy_limit;
+  const auto failed = check_physics(m, e, k_in, figures, reason);
+  ASSERT_TRUE(failed.has_value());
+  EXPECT_EQ(*failed, StopReason::plastic_work_excess);
+  EXPECT_NE(reason.find("plastic work exceeds the internal energy"), std::string::npos) << reason;
+}
+
 }  // namespace
 }  // namespace splat
