@@ -3,7 +3,7 @@
 // tests/exact/ptw_library_sources.hpp, tests/exact/sg_library_sources.hpp),
 // each as particle and substrate of scenes/impact_al_al.json at 300 and
 // 800 m/s: every run ends with a stick or rebound verdict, not a numerical
-// failure, and keeps its energy balance within 5 % (the twenty-four runs take
+// failure, and keeps its energy balance within 5 % (the twenty-six runs take
 // several seconds on one thread; docs/validation.md, "Material library",
 // lists what each run gives). The runs known to fail at the scene's 8
 // elements across are listed with the failure they end in, so that a change
