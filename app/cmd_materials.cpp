@@ -99,6 +99,8 @@ ShownUnit shown_unit(Quantity q) {
       return {" K", 1.0};
     case Quantity::inverse_temperature:
       return {" 1/K", 1.0};
+    case Quantity::inverse_pressure:
+      return {" 1/GPa", 1e9};
     case Quantity::shear_modulus:
       return {" GPa", 1e-9};
     case Quantity::density:

@@ -173,6 +173,8 @@ inline constexpr UnitSlip unit_slips[] = {
     {"degrees Celsius", "K", 1.0, 273.15},
     {"kJ/(kg K)", "J/(kg K)", 1e3, 0.0},
     {"g/mol", "kg/mol", 1e-3, 0.0},
+    {"1/GPa", "1/Pa", 1e-9, 0.0},
+    {"1/Mbar", "1/Pa", 1e-11, 0.0},
 };
 
 std::optional<MagnitudeRange> metal_range(Quantity q) {
@@ -191,6 +193,8 @@ std::optional<MagnitudeRange> metal_range(Quantity q) {
       return MagnitudeRange{500.0, 25000.0, false, "kg/m^3", "500 to 25000 kg/m^3"};
     case Quantity::molar_mass:
       return MagnitudeRange{0.006, 0.3, false, "kg/mol", "0.006 to 0.3 kg/mol"};
+    case Quantity::inverse_pressure:
+      return MagnitudeRange{1e-12, 1e-9, true, "1/Pa", "0 or 1e-12 to 1e-9 1/Pa"};
     case Quantity::dimensionless:
     case Quantity::rate:
     case Quantity::inverse_temperature:

@@ -132,9 +132,10 @@ inline double jc_hardening(const JohnsonCookParams& jc, double eps_p) {
 FlowStress johnson_cook_flow_stress(const JohnsonCookParams& jc, const ModelSwitches& sw,
                                     double eps_p, double eps_dot_p, double T);
 
-// The same under the name every law gives its flow stress.
+// The same under the name every law gives its flow stress (no pressure
+// dependence).
 inline FlowStress flow_stress(const JohnsonCookParams& jc, const ModelSwitches& sw, double eps_p,
-                              double eps_dot_p, double T) {
+                              double eps_dot_p, double T, const PressureState& /*state*/) {
   return johnson_cook_flow_stress(jc, sw, eps_p, eps_dot_p, T);
 }
 

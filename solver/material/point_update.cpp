@@ -34,16 +34,23 @@ MaterialConstants derive_constants(const Material& m) {
 
 namespace {
 
+// The pressure and compression a strength law sees at the point.
+PressureState pressure_state(const PointState& st) {
+  return {st.p, 1.0 / st.J};
+}
+
 // The strength caches of a point (hardening, strength_scale, sigma_y_static)
 // at its eps_p, T and D, and sigma_y at its eps_dot_p: for Johnson-Cook,
 // A + B eps_p^n and (1 - D)(1 - T*^m) (its return and fast path use them);
-// for any other law, its undamaged flow stress at zero plastic rate and 1 - D.
+// for any other law, its undamaged flow stress at zero plastic rate (and the
+// point's pressure state) and 1 - D.
 template <class Law>
 void set_strength(const Law& law, const ModelSwitches& sw, PointState& st) {
-  st.hardening = flow_stress(law, sw, st.eps_p, 0.0, st.T).value;
+  const PressureState ps = pressure_state(st);
+  st.hardening = flow_stress(law, sw, st.eps_p, 0.0, st.T, ps).value;
   st.strength_scale = 1.0 - st.D;
   st.sigma_y_static = st.strength_scale * st.hardening;
-  st.sigma_y = st.strength_scale * flow_stress(law, sw, st.eps_p, st.eps_dot_p, st.T).value;
+  st.sigma_y = st.strength_scale * flow_stress(law, sw, st.eps_p, st.eps_dot_p, st.T, ps).value;
 }
 
 void set_strength(const JohnsonCookParams& jc, const ModelSwitches& sw, PointState& st) {
@@ -213,11 +220,12 @@ struct PlasticReturn {
 };
 
 // Any law: the general radial return (strength_model.hpp) at the start
-// temperature and damage.
+// temperature, damage and pressure state.
 template <class Law>
 PlasticReturn plastic_return(const Law& law, const MaterialConstants&, const ModelSwitches& sw,
                              const PointState& st, double q_trial, double G_d, double dt) {
-  const LawReturn r = law_return(law, sw, q_trial, G_d, 1.0 - st.D, st.eps_p, dt, st.T);
+  const LawReturn r =
+      law_return(law, sw, q_trial, G_d, 1.0 - st.D, st.eps_p, dt, st.T, pressure_state(st));
   return {r.delta_eps_p, r.sigma_y, 0.0, 1.0, r.iterations, r.converged};
 }
 
@@ -324,6 +332,9 @@ PointUpdateResult update_with_law(const Law& law, const Material& m, const Mater
     // Temperature or damage moved: the strength at the end state changes.
     end_strength(law, mc, sw, st, ret, T_old, D_old, heated);
   } else {
+    // The pressure and eta moved: a law that depends on them needs its
+    // caches at the end state (the others' did not change).
+    if constexpr (pressure_dependent<Law>()) set_strength(law, sw, st);
     st.sigma_y = st.sigma_y_static;  // no plastic rate: no rate hardening
   }
   st.sigma_y_peak = std::max(st.sigma_y_peak, st.sigma_y);

@@ -48,10 +48,11 @@ struct PointState {
   double eps_p_init = -1.0;     // plastic strain at initiation, -1 before, -
   double sigma_y = 0.0;         // current (damaged) yield stress at the last plastic rate, Pa
   double sigma_y_static = 0.0;  // yield stress at zero plastic rate, (1 - D) sigma_y(eps_p,
-                                // 0, T); eps_p, T and D change only in plastic steps, so an
-                                // elastic step needs no evaluation of the strength law, Pa
+                                // 0, T, p, J); eps_p, T and D change only in plastic steps,
+                                // so an elastic step needs no evaluation of the strength law
+                                // unless it depends on p and J (steinberg_guinan.hpp), Pa
   double hardening = 0.0;       // Johnson-Cook: A + B eps_p^n; other laws: the undamaged
-                                // sigma_y(eps_p, 0, T), Pa; with strength_scale, a cache kept
+                                // sigma_y(eps_p, 0, T, p, J), Pa; with strength_scale, a cache kept
                                 // by update_point (eps_p, T, D change only there) so that a
                                 // plastic step starts without evaluating pow
   double strength_scale = 1.0;  // Johnson-Cook: (1 - D)(1 - T*^m); other laws: 1 - D, -;

@@ -45,7 +45,7 @@ NormalisedStress normalised_stress(const PrestonTonksWallaceParams& w, double ps
 }  // namespace
 
 FlowStress flow_stress(const PrestonTonksWallaceParams& w, const ModelSwitches& sw, double eps_p,
-                       double eps_dot_p, double T) {
+                       double eps_dot_p, double T, const PressureState& /*state*/) {
   const double temp = sw.thermal_softening ? T : w.T_ref;
   if (temp >= w.T_melt) return {0.0, 0.0, 0.0};
   const bool rate_on = sw.rate_hardening && eps_dot_p > w.eps_dot_0;

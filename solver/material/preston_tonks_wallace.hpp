@@ -89,8 +89,9 @@ inline StrengthReferences strength_references(const PrestonTonksWallaceParams& p
 // Flow stress and its partial derivatives at (eps_p, eps_dot_p, T): the
 // strain slope in closed form (2 G theta e^-b X / (1 - (1 - e^-b) X), X the
 // second exponential above), the rate slope by a central difference in ln
-// rate (for the Newton steps of the return only).
+// rate (for the Newton steps of the return only). The constant G here has
+// no pressure dependence.
 FlowStress flow_stress(const PrestonTonksWallaceParams& ptw, const ModelSwitches& sw, double eps_p,
-                       double eps_dot_p, double T);
+                       double eps_dot_p, double T, const PressureState& state);
 
 }  // namespace splat

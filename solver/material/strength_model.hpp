@@ -3,8 +3,9 @@
 //   - a parameter struct P with P::model (its "model" name in the material
 //     schema) and P::fields() (its parameters, strength_law.hpp),
 //   - strength_references(P) and
-//   - flow_stress(P, switches, eps_p, eps_dot_p, T) with the partial
-//     derivatives, non-decreasing in eps_p and eps_dot_p;
+//   - flow_stress(P, switches, eps_p, eps_dot_p, T, pressure_state) with the
+//     partial derivatives in eps_p and eps_dot_p, non-decreasing in both
+//     (and P::pressure_dependent if it uses the PressureState);
 // the general point update (point_update.cpp) then runs it through
 // law_return below. Johnson-Cook has its own return and SIMD fast path
 // (johnson_cook.hpp, point_update_fast.hpp). To add a law: its header, and
@@ -36,13 +37,17 @@ inline StrengthReferences strength_references(const StrengthModel& s) {
   return std::visit([](const auto& law) { return strength_references(law); }, s);
 }
 
+// The flow stress of the material's law; at no pressure and rho = rho0
+// unless `state` is given.
 inline FlowStress flow_stress(const StrengthModel& s, const ModelSwitches& sw, double eps_p,
-                              double eps_dot_p, double T) {
-  return std::visit([&](const auto& law) { return flow_stress(law, sw, eps_p, eps_dot_p, T); }, s);
+                              double eps_dot_p, double T, const PressureState& state = {}) {
+  return std::visit(
+      [&](const auto& law) { return flow_stress(law, sw, eps_p, eps_dot_p, T, state); }, s);
 }
 
-// Flow stress with no plastic strain at the reference rate and temperature:
-// the initial yield stress, Pa (A for Johnson-Cook, C0 for Zerilli-Armstrong).
+// Flow stress with no plastic strain at the reference rate and temperature,
+// no pressure and rho = rho0: the initial yield stress, Pa (A for Johnson-Cook, C0 for
+// Zerilli-Armstrong).
 inline double initial_yield_stress(const StrengthModel& s) {
   const StrengthReferences r = strength_references(s);
   return flow_stress(s, ModelSwitches{}, 0.0, r.eps_dot_0, r.T_ref).value;
@@ -56,16 +61,16 @@ struct LawReturn {
 };
 
 // Radial return for von Mises plasticity with any law: finds dp >= 0 with
-//   g(dp) = q_trial - 3 G_d dp - keep sigma_y(eps_p + dp, dp / dt, T) = 0,
-// keep = 1 - D and T those at the start of the step (staggered update), G_d
-// the damaged shear modulus. The caller found g(0) > 0; g(q_trial / 3 G_d) <=
-// 0 and g is strictly decreasing (sigma_y is non-decreasing in strain and
-// rate), so the root is unique and bracketed. Newton steps are kept inside
-// the shrinking bracket; a step that would leave it, or an unbounded slope
-// (eps_p^(1/2) at eps_p = 0), bisects instead.
+//   g(dp) = q_trial - 3 G_d dp - keep sigma_y(eps_p + dp, dp / dt, T, state) = 0,
+// keep = 1 - D, T and the pressure state those at the start of the step
+// (staggered update), G_d the damaged shear modulus. The caller found
+// g(0) > 0; g(q_trial / 3 G_d) <= 0 and g is strictly decreasing (sigma_y is
+// non-decreasing in strain and rate), so the root is unique and bracketed.
+// Newton steps are kept inside the shrinking bracket; a step that would leave
+// it, or an unbounded slope (eps_p^(1/2) at eps_p = 0), bisects instead.
 template <class Law>
 LawReturn law_return(const Law& law, const ModelSwitches& sw, double q_trial, double G_d,
-                     double keep, double eps_p, double dt, double T) {
+                     double keep, double eps_p, double dt, double T, const PressureState& state) {
   constexpr int max_iterations = 200;
   const double three_g = 3.0 * G_d;
   LawReturn r;
@@ -75,7 +80,7 @@ LawReturn law_return(const Law& law, const ModelSwitches& sw, double q_trial, do
   r.converged = false;
   for (int it = 1; it <= max_iterations; ++it) {
     r.iterations = it;
-    const FlowStress f = flow_stress(law, sw, eps_p + dp, dp / dt, T);
+    const FlowStress f = flow_stress(law, sw, eps_p + dp, dp / dt, T, state);
     r.sigma_y = keep * f.value;
     const double g = q_trial - three_g * dp - r.sigma_y;
     (g > 0.0 ? lo : hi) = dp;

@@ -7,7 +7,7 @@
 namespace splat {
 
 FlowStress flow_stress(const ZerilliArmstrongParams& za, const ModelSwitches& sw, double eps_p,
-                       double eps_dot_p, double T) {
+                       double eps_dot_p, double T, const PressureState& /*state*/) {
   const double temp = sw.thermal_softening ? T : za.T_ref;
   if (temp >= za.T_melt) return {0.0, 0.0, 0.0};
   const bool rate_on = sw.rate_hardening && eps_dot_p > za.eps_dot_0;

@@ -49,8 +49,8 @@ inline StrengthReferences strength_references(const ZerilliArmstrongParams& za) 
 }
 
 // Flow stress and its partial derivatives at (eps_p, eps_dot_p, T); the
-// slope in eps_p is unbounded at eps_p = 0 (C2 > 0).
+// slope in eps_p is unbounded at eps_p = 0 (C2 > 0). No pressure dependence.
 FlowStress flow_stress(const ZerilliArmstrongParams& za, const ModelSwitches& sw, double eps_p,
-                       double eps_dot_p, double T);
+                       double eps_dot_p, double T, const PressureState& state);
 
 }  // namespace splat

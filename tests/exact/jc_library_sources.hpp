@@ -21,7 +21,7 @@ struct JcSourceSet {
   double c_p;            // J/(kg K)
 };
 
-inline constexpr std::array<JcSourceSet, 7> jc_library_sources{{
+inline constexpr std::array<JcSourceSet, 8> jc_library_sources{{
     // Johnson & Cook (1983), OFHC copper; T_ref as the quoting record (294 K).
     {"cu-ofhc-jc",
      "Johnson & Cook 1983",
@@ -85,6 +85,16 @@ inline constexpr std::array<JcSourceSet, 7> jc_library_sources{{
      211e9,
      0.29,
      449.0},
+    // Pierazzo et al. (2008), Table 6, the set iSALE used for Al 1100-O, as
+    // iSALE's example run prints it (T_ref 293 K, T_melt 933 K, nu 0.33, c_p
+    // 896 J/(kg K)); density and E the handbook values of 1100-O.
+    {"al1100-o-jc",
+     "Pierazzo et al. 2008, Table 6 (iSALE, Al 1100-O)",
+     {49e6, 157e6, 0.167, 0.016, 1.0, 1.7, 293.0, 933.0},
+     2710.0,
+     69e9,
+     0.33,
+     896.0},
 }};
 
 }  // namespace splat::exact

@@ -16,20 +16,20 @@ namespace splat::exact {
 struct SgSourceSet {
   const char* material;  // library name
   const char* source;    // where the numbers are printed
-  SgCurve curve;         // Pa, Pa, -, -, -, 1/K, K, K
+  SgCurve curve;         // Pa, Pa, -, -, -, 1/Pa, 1/K, K, K
   double G0;             // shear modulus at T_ref and zero pressure, Pa
   double density;        // rho0, kg/m^3
   double c0, s, gamma0;  // Mie-Grueneisen: m/s, -, -
   double c_p;            // J/(kg K)
 };
 
-// Steinberg's G0 and A are in the Uintah files in Pa and (mislabelled) per
-// Mbar; A is not used (the law here is at zero pressure). T_ref is the 300 K
-// of Steinberg's form of G(T).
+// Steinberg's G0 and A are in the Uintah files in Pa and (mislabelled as
+// 1/Pa) per Mbar: A here is the printed number times 1e-11 (1 Mbar = 1e11
+// Pa). T_ref is the 300 K of Steinberg's form of G(T).
 inline constexpr std::array<SgSourceSet, 3> sg_library_sources{{
     {"zn-sg",
      "Steinberg 1996, zinc",
-     {0.15e9, 0.92e9, 100.0, 0.2, 0.0, 7.60e-4, 300.0, 900.0},
+     {0.15e9, 0.92e9, 100.0, 0.2, 0.0, 5.95 * 1e-11, 7.60e-4, 300.0, 900.0},
      39.5e9,
      7139.0,
      3030.0,
@@ -38,7 +38,7 @@ inline constexpr std::array<SgSourceSet, 3> sg_library_sources{{
      389.0},
     {"ag-sg",
      "Steinberg 1996, silver",
-     {0.05e9, 0.66e9, 28.0, 0.80, 0.0, 4.36e-4, 300.0, 1604.0},
+     {0.05e9, 0.66e9, 28.0, 0.80, 0.0, 4.70 * 1e-11, 4.36e-4, 300.0, 1604.0},
      29.8e9,
      10490.0,
      3270.0,
@@ -47,7 +47,7 @@ inline constexpr std::array<SgSourceSet, 3> sg_library_sources{{
      233.0},
     {"mg-az31b-sg",
      "Steinberg 1996, magnesium AZ31B-H24",
-     {0.19e9, 0.48e9, 1100.0, 0.12, 0.0, 5.09e-4, 300.0, 1150.0},
+     {0.19e9, 0.48e9, 1100.0, 0.12, 0.0, 10.3 * 1e-11, 5.09e-4, 300.0, 1150.0},
      16.5e9,
      1780.0,
      4520.0,

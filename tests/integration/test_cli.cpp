@@ -51,9 +51,10 @@ TEST(cli, materials_lists_the_library) {
   const auto o = run_splat("materials");
   EXPECT_EQ(o.code, 0);
   for (const char* name :
-       {"al-thesis", "al-deck", "cu-thesis", "cu-deck", "cu-ofhc-ptw", "steel-hopkinson",
-        "ti6al4v-thesis", "cu-ofhc-jc", "al6061-t6-jc", "ti6al4v-jc", "ni200-jc", "ss316l-jc",
-        "in718-jc", "al-thesis-gf", "fe-armco-jc", "ta-ptw", "zn-sg", "ag-sg", "mg-az31b-sg"}) {
+       {"al-thesis",       "al-deck",        "cu-thesis",  "cu-deck",      "cu-ofhc-ptw",
+        "steel-hopkinson", "ti6al4v-thesis", "cu-ofhc-jc", "al6061-t6-jc", "ti6al4v-jc",
+        "ni200-jc",        "ss316l-jc",      "in718-jc",   "al-thesis-gf", "fe-armco-jc",
+        "ta-ptw",          "zn-sg",          "ag-sg",      "mg-az31b-sg",  "al1100-o-jc"}) {
     EXPECT_NE(o.stdout_text.find(name), std::string::npos) << name;
   }
   // The law of each material, with its parameters.

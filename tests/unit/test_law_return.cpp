@@ -1,5 +1,6 @@
 // The general radial return of strength_model.hpp (law_return) with the
-// Zerilli-Armstrong and Preston-Tonks-Wallace laws of copper: it converges,
+// Zerilli-Armstrong and Preston-Tonks-Wallace laws of copper and the
+// Steinberg-Guinan law of zinc under 2 GPa and in tension: it converges,
 // and the returned stress lies on the flow surface, at every plastic strain,
 // rate and temperature an impact visits, including eps_p = 0 (unbounded
 // slope for Zerilli-Armstrong), the overdriven-shock branch of
@@ -44,7 +45,7 @@ PrestonTonksWallaceParams ptw_copper() {
 }
 
 template <class Law>
-void expect_returns_onto_the_flow_surface(const Law& law) {
+void expect_returns_onto_the_flow_surface(const Law& law, const PressureState& ps = {}) {
   const ModelSwitches sw;
   const double G = 46e9;  // Pa
   for (double eps_p : {0.0, 1e-6, 0.01, 1.0, 5.0}) {
@@ -53,15 +54,15 @@ void expect_returns_onto_the_flow_surface(const Law& law) {
         const double dt = 1e-9;
         // A trial stress 1.5 times the flow stress at the imposed rate, plus
         // what the elastic predictor of one step adds.
-        const double sigma = flow_stress(law, sw, eps_p, rate, T).value;
+        const double sigma = flow_stress(law, sw, eps_p, rate, T, ps).value;
         const double q_trial = 1.5 * sigma + 3.0 * G * rate * dt + 1e6;
-        const LawReturn r = law_return(law, sw, q_trial, G, 0.95, eps_p, dt, T);
+        const LawReturn r = law_return(law, sw, q_trial, G, 0.95, eps_p, dt, T, ps);
         SCOPED_TRACE(::testing::Message() << "eps_p " << eps_p << " rate " << rate << " T " << T);
         ASSERT_TRUE(r.converged);
         EXPECT_LT(r.iterations, 60);
         const double dp = r.delta_eps_p;
         ASSERT_GE(dp, 0.0);
-        const double on_surface = 0.95 * flow_stress(law, sw, eps_p + dp, dp / dt, T).value;
+        const double on_surface = 0.95 * flow_stress(law, sw, eps_p + dp, dp / dt, T, ps).value;
         EXPECT_NEAR(q_trial - 3.0 * G * dp, on_surface, 1e-9 * q_trial);
       }
     }
@@ -74,6 +75,22 @@ TEST(law_return, lands_on_the_flow_surface_zerilli_armstrong) {
 
 TEST(law_return, lands_on_the_flow_surface_preston_tonks_wallace) {
   expect_returns_onto_the_flow_surface(ptw_copper());
+}
+
+// Steinberg (1996), zinc (materials/zn-sg.json), compressed (P 2 GPa,
+// eta 1.03) and stretched (P -2 GPa, eta 0.97).
+TEST(law_return, lands_on_the_flow_surface_steinberg_guinan) {
+  const SteinbergGuinanParams zinc{.Y0 = 0.15e9,
+                                   .Y_max = 0.92e9,
+                                   .beta = 100.0,
+                                   .n = 0.2,
+                                   .eps_i = 0.0,
+                                   .A = 5.95e-11,
+                                   .B = 7.60e-4,
+                                   .T_ref = 300.0,
+                                   .T_melt = 900.0};
+  expect_returns_onto_the_flow_surface(zinc, {2e9, 1.03});
+  expect_returns_onto_the_flow_surface(zinc, {-2e9, 0.97});
 }
 
 }  // namespace

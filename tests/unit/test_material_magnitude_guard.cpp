@@ -69,6 +69,18 @@ TEST(material_magnitude_guard, every_law_and_every_guarded_field) {
   EXPECT_NE(message_at(cu, "/thermal/c_p").find("kJ/(kg K)"), std::string::npos);
   EXPECT_NE(message_at(cu, "/strength/T_ref").find("Celsius"), std::string::npos);
   EXPECT_NE(message_at(cu, "/strength/T_melt").find("300 K to 4500 K"), std::string::npos);
+
+  // Steinberg's A as his tables print it (per Mbar), and per GPa; 0 (no
+  // pressure term) is accepted.
+  json zn = material_document("zn-sg");
+  zn["strength"]["A"] = 5.95;
+  EXPECT_NE(message_at(zn, "/strength/A").find("1/Mbar, write 5.95e-11"), std::string::npos)
+      << message_at(zn, "/strength/A");
+  zn["strength"]["A"] = 0.0595;
+  EXPECT_NE(message_at(zn, "/strength/A").find("1/GPa, write 5.95e-11"), std::string::npos)
+      << message_at(zn, "/strength/A");
+  zn["strength"]["A"] = 0.0;
+  EXPECT_EQ(message_at(zn, "/strength/A"), "");
 }
 
 // The bounds themselves are accepted, and a hardening stress may be 0

@@ -55,11 +55,12 @@ bool is_closed(const json& node) {
 
 TEST(material_schema, every_library_material_is_valid) {
   const std::vector<std::string> names = material_names();
-  EXPECT_EQ(names, (std::vector<std::string>{"ag-sg", "al-deck", "al-thesis", "al-thesis-gf",
-                                             "al6061-t6-jc", "cu-deck", "cu-ofhc-jc", "cu-ofhc-ptw",
-                                             "cu-thesis", "fe-armco-jc", "in718-jc", "mg-az31b-sg",
-                                             "ni200-jc", "ss316l-jc", "steel-hopkinson", "ta-ptw",
-                                             "ti6al4v-jc", "ti6al4v-thesis", "zn-sg"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{
+                "ag-sg",           "al-deck",  "al-thesis",   "al-thesis-gf",   "al1100-o-jc",
+                "al6061-t6-jc",    "cu-deck",  "cu-ofhc-jc",  "cu-ofhc-ptw",    "cu-thesis",
+                "fe-armco-jc",     "in718-jc", "mg-az31b-sg", "ni200-jc",       "ss316l-jc",
+                "steel-hopkinson", "ta-ptw",   "ti6al4v-jc",  "ti6al4v-thesis", "zn-sg"}));
   for (const std::string& name : names) {
     const json doc = library(name);
     EXPECT_EQ(check(doc), Violations{}) << name;

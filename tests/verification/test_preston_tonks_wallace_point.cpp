@@ -86,7 +86,7 @@ TEST(preston_tonks_wallace_p_zero, kernel_is_the_closed_form_of_the_limit) {
   for (double rate : {1.0, 1e3, 1e6, 1e9}) {
     for (double T : {300.0, 800.0, 2000.0}) {
       for (double psi : {0.0, 0.01, 0.1, 0.5, 2.0}) {
-        const FlowStress f = flow_stress(w, sw, psi, rate, T);
+        const FlowStress f = flow_stress(w, sw, psi, rate, T, PressureState{});
         const double expected = law.flow(psi, rate, T);
         EXPECT_NEAR(f.value, expected, 1e-12 * expected) << rate << " /s, " << T << " K, " << psi;
         const double slope = law.slope(psi, rate, T);
@@ -113,7 +113,7 @@ TEST(preston_tonks_wallace_p_zero, small_p_tends_to_the_limit) {
       w.p = 1e-6;
       exact::PtwCurve c = c0;
       c.p = 1e-6;
-      EXPECT_NEAR(flow_stress(w, sw, psi, rate, 300.0).value, limit, 1e-5 * limit);
+      EXPECT_NEAR(flow_stress(w, sw, psi, rate, 300.0, PressureState{}).value, limit, 1e-5 * limit);
       EXPECT_NEAR(exact::ptw_flow_stress(c, psi, rate, 300.0), limit, 1e-5 * limit);
     }
   }
