@@ -375,7 +375,8 @@ std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& 
     std::snprintf(buf, sizeof buf,
                   "plastic work exceeds the internal energy by %.3g of the reference energy "
                   "(limit %.3g): the strength law booked more plastic work and heat than the "
-                  "stresses received (strain increments reversing from step to step)",
+                  "stresses received (strain increments that reverse from step to step, or far "
+                  "larger than the yield strain)",
                   figures.plastic_work_excess, in.energy_limit);
     reason = buf;
     return figures.failed = StopReason::plastic_work_excess;
