@@ -70,6 +70,16 @@ void follow_particle_shapes(ContactSurface& s, const SphBody& body) {
   }
 }
 
+// Sets the cap normals of SPH master surface s: each particle's outward
+// surface normal (sph_surface_normal; zero inside the body).
+void follow_cap_normals(ContactSurface& s, const SphBody& body) {
+  s.cap_normal.resize(s.nodes.size());
+  for (std::size_t k = 0; k < s.nodes.size(); ++k) {
+    s.cap_normal[k] =
+        sph_surface_normal(body, static_cast<std::size_t>(s.nodes[k]) - body.node_begin);
+  }
+}
+
 // A face's nodes, ascending (segments padded with -1): the same key for
 // the face seen from either of its elements.
 using FaceKey = std::array<int, 4>;
@@ -665,8 +675,10 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
                                      const std::vector<SphBody>& sph) {
   if (!(dt > 0.0)) return;
   const bool adhesive = settings_.adhesion.has_value();
-  if (master_sph_ && master_index_ < sph.size())
+  if (master_sph_ && master_index_ < sph.size()) {
     follow_particle_shapes(master_, sph[master_index_]);
+    follow_cap_normals(master_, sph[master_index_]);
+  }
   if (slave_sph_ && slave_index_ < sph.size()) follow_particle_shapes(slave_, sph[slave_index_]);
   std::vector<DetectedPair> pairs = detect(nodes);
   stats_.pairs = static_cast<long long>(pairs.size());

@@ -87,7 +87,17 @@ constexpr std::size_t search_chunk = 64;
 constexpr std::size_t min_parallel_slaves = 128;
 constexpr std::size_t min_parallel_faces = 512;
 
-// Pinball geometry of point p against master particle f of surface s.
+// Curvature radius R_c of master particle f's cap (at least its pinball's
+// reach), m; 0 without a cap.
+double cap_radius(const ContactSurface& s, int f) {
+  if (s.cap_normal.empty() || s.cap_normal[static_cast<std::size_t>(f)].squaredNorm() == 0.0) {
+    return 0.0;
+  }
+  return std::max(k_cap_curvature * s.node_radius(f), s.node_reach(f));
+}
+
+// Geometry of point p against master particle f of surface s: its cap when
+// it has one and p is outside its tangent plane, else its pinball (header).
 PairGeometry project_on_particle(const Vec3& p, const ContactSurface& s, int f,
                                  const std::vector<Vec3>& x) {
   PairGeometry g;
@@ -95,13 +105,25 @@ PairGeometry project_on_particle(const Vec3& p, const ContactSurface& s, int f,
   const double dist = d.norm();
   if (!(dist > 0.0)) return g;
   g.valid = true;
-  g.normal = d / dist;
+  const Vec3 n = s.cap_normal.empty() ? Vec3::Zero() : s.cap_normal[static_cast<std::size_t>(f)];
+  const double along = d.dot(n);
+  if (along > 0.0) {
+    // The cap: a sphere of radius R_c through the pinball's top along n.
+    const double top = s.radius_along(f, n);
+    const double curvature_radius = cap_radius(s, f);
+    const Vec3 e = d + (curvature_radius - top) * n;
+    const double e_norm = e.norm();
+    g.normal = e / e_norm;
+    g.gap = e_norm - curvature_radius;
+  } else {
+    g.normal = d / dist;
+    g.gap = dist - s.radius_along(f, g.normal);
+  }
   // Any unit vector normal to n, then the third of the triad.
   const Vec3 a = std::abs(g.normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   g.tangent1 = g.normal.cross(a).normalized();
   g.tangent2 = g.normal.cross(g.tangent1);
   g.weights = {1.0, 0.0, 0.0, 0.0};
-  g.gap = dist - s.radius_along(f, g.normal);
   return g;
 }
 
@@ -258,9 +280,12 @@ std::vector<DetectedPair> find_pairs_buckets(const ContactSurface& master,
       b = b.cwiseMax(x[master.faces[f][k]]);
     }
     // The projection tolerance is in local units: a fraction of the largest
-    // edge; a master pinball reaches its radius further, a slave pinball its own.
+    // edge; a master pinball reaches its radius further (a cap its curvature
+    // radius: the points within a gap G of a cap lie within R_c + G of its
+    // particle), a slave pinball its own.
+    const double own_reach = std::max(0.5 * sizes[f], cap_radius(master, static_cast<int>(f)));
     const double grow =
-        reach * std::max(sizes[f], (b - a).maxCoeff()) + 0.5 * sizes[f] * pinball + slave_reach;
+        reach * std::max(sizes[f], (b - a).maxCoeff()) + own_reach * pinball + slave_reach;
     lo[f] = a - Vec3::Constant(grow);
     hi[f] = b + Vec3::Constant(grow);
     near[f] =

@@ -948,6 +948,20 @@ Vec3 sph_pair_gradient(const SphBody& b, std::size_t k) {
   return b.B[i] * (b.pair_t[k] * dX);
 }
 
+Vec3 sph_surface_normal(const SphBody& b, std::size_t i) {
+  if (!b.active[i]) return Vec3::Zero();
+  Vec3 a = Vec3::Zero();
+  for (int q = b.pairs.offsets[i]; q < b.pairs.offsets[i + 1]; ++q) {
+    const std::size_t k = static_cast<std::size_t>(q);
+    const std::size_t j = static_cast<std::size_t>(b.pairs.j[k]);
+    a += b.pair_t[k] * (mirror_point(b.planes, b.pairs.op[k], b.X[j]) - b.X[i]);
+  }
+  const Mat3& F = b.F[i];
+  if (!(a.norm() * b.h[i] > k_surface_gradient) || !(F.determinant() > 0.0)) return Vec3::Zero();
+  const Vec3 n = -(F.inverse().transpose() * a);
+  return n.allFinite() ? Vec3(n.normalized()) : Vec3::Zero();
+}
+
 namespace {
 
 // Sums over the particles of term(i) (a Vec2), in fixed blocks combined in

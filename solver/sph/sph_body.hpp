@@ -233,6 +233,15 @@ SphStepResult sph_internal_forces(SphBody& body, NodeSet& nodes, double dt);
 // gc_ij = V_j B_i g_ij, 1/m (for checks: the force loops never form it).
 Vec3 sph_pair_gradient(const SphBody& body, std::size_t k);
 
+// The outward unit normal of particle i if it lies on the body's surface,
+// else zero: -F_i^-T a_i normalised (Nanson's rule), with a_i = sum_j V_j
+// grad_i W_ij, the uncorrected gradient of the reference neighbourhood's
+// volume fraction (mirrored ghosts included), zero inside the body and about
+// 1 / h on a face; i is on the surface when |a_i| h_i > k_surface_gradient.
+// Zero for inactive particles and det F_i <= 0.
+inline constexpr double k_surface_gradient = 0.25;  // -
+Vec3 sph_surface_normal(const SphBody& body, std::size_t i);
+
 // Re-references the body at the current positions (see the header comment).
 void sph_update_reference(SphBody& body, const NodeSet& nodes);
 

@@ -412,6 +412,52 @@ TEST(SphForces, ConserveLinearAndAngularMomentum) {
   EXPECT_LT(moment.norm(), 1e-12 * scale * s.radius);
 }
 
+// Surface normals of a box mirrored across x = 0 (the half x >= 0 of a box
+// twice as wide), after a homogeneous deformation F: particles inside, and
+// those next to the mirror plane, have none; particles in the middle of a
+// free face get its normal mapped by Nanson's rule, F^-T N (normalised).
+TEST(SphSurface, NormalsOfAMirroredBoxFollowItsFacesAndTheDeformation) {
+  ParticleSpec s;
+  s.shape = ParticleShape::box;
+  s.lattice = Lattice::cubic;
+  s.hi = Vec3(1.0e-3, 1.0e-3, 1.0e-3);
+  s.spacing = 1e-4;
+  const ParticleCloud c = generate_particles(s);
+  NodeSet nodes;
+  SphBody body = make_sph_body("box", c, elastic_aluminium(), elastic_switches(), SphSettings{},
+                               {{0, 0.0}}, Vec3::Zero(), 300.0, 1, nodes);
+  Mat3 F;              // x stays normal to the mirror plane
+  F << 1.1, 0.0, 0.0,  //
+      0.0, 0.9, 0.2,   //
+      0.0, 0.05, 1.0;
+  for (std::size_t i = 0; i < c.size(); ++i) nodes.x[i] = F * c.x[i];
+  sph_internal_forces(body, nodes, 0.0);
+  const Vec3 top = (F.inverse().transpose() * Vec3::UnitZ()).normalized();
+  const Vec3 side = (F.inverse().transpose() * Vec3::UnitX()).normalized();
+  int inside = 0, on_top = 0, on_side = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Vec3 p = c.x[i];
+    const double lo = std::min({p.y(), p.z()}), hi = (s.hi - p).minCoeff();
+    const Vec3 n = sph_surface_normal(body, i);
+    if (std::min(lo, hi) > 2.5 * s.spacing) {  // two kernel radii from every free face
+      EXPECT_EQ(n.norm(), 0.0) << "interior particle " << i;  // the mirror plane included
+      ++inside;
+    } else if (s.hi.z() - p.z() < 0.6 * s.spacing &&
+               std::min(lo, s.hi.x() - p.x()) > 2.5 * s.spacing &&
+               s.hi.y() - p.y() > 2.5 * s.spacing) {
+      EXPECT_GT(n.dot(top), std::cos(1e-6)) << "top face particle " << i;
+      ++on_top;
+    } else if (s.hi.x() - p.x() < 0.6 * s.spacing &&
+               std::min(lo, (s.hi - p).tail<2>().minCoeff()) > 2.5 * s.spacing) {
+      EXPECT_GT(n.dot(side), std::cos(1e-6)) << "side face particle " << i;
+      ++on_side;
+    }
+  }
+  EXPECT_GT(inside, 10);
+  EXPECT_GT(on_top, 10);
+  EXPECT_GT(on_side, 10);
+}
+
 // The time-step bound follows the kernel's spacing, the compression of F and
 // the signal speed, not the current distance of two particles: a particle
 // next to a symmetry plane that drifts onto it nears its own mirror image (at

@@ -2,7 +2,8 @@
 //  - pinball SPH-SPH and SPH particles on FE quads: the bucket search finds
 //    exactly the pairs of the all-pairs search on jittered particle clouds;
 //  - the pinball geometry: gap |x_s - x_m| - R_s - R_m along the centre line,
-//    with radii that follow each particle's deformation;
+//    with radii that follow each particle's deformation; the caps of surface
+//    particles: flatter bumps, normal the gap's gradient;
 //  - adhesive areas of thesis 2.2.4 on the links: pi R^2 with the mean radius
 //    for SPH-SPH, min(face area, pi R^2) for SPH on an FE face.
 #include <gtest/gtest.h>
@@ -97,6 +98,21 @@ TEST(SphContactSearch, pinball_buckets_match_all_pairs) {
   }
 }
 
+// The same with the block's top layer as caps (normal +z).
+TEST(SphContactSearch, cap_buckets_match_all_pairs) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    for (double overlap : {-0.5e-6, 0.2e-6, 0.6e-6}) {
+      SCOPED_TRACE(::testing::Message() << "seed " << seed << " overlap " << overlap);
+      Clouds c = ball_on_block(overlap, seed, false);
+      c.master.cap_normal.assign(c.master.nodes.size(), Vec3::Zero());
+      for (std::size_t k = 0; k < c.master.nodes.size(); ++k) {
+        if (c.x[c.master.nodes[k]].z() > -0.2e-6) c.master.cap_normal[k] = Vec3::UnitZ();
+      }
+      expect_same_pairs(c, overlap > 0.0 ? 3 : 0);
+    }
+  }
+}
+
 TEST(SphContactSearch, particles_on_quads_buckets_match_all_pairs) {
   for (unsigned seed : {1u, 2u, 3u}) {
     for (double overlap : {-0.5e-6, 0.2e-6, 0.6e-6}) {
@@ -117,6 +133,66 @@ TEST(SphContactSearch, pinball_gap_is_centre_distance_minus_radii) {
   EXPECT_NEAR((pairs[0].geometry.normal - x[1] / dist).norm(), 0.0, 1e-15);
   EXPECT_NEAR(pairs[0].geometry.normal.dot(pairs[0].geometry.tangent1), 0.0, 1e-15);
   EXPECT_NEAR(slave_node_area(slave, 0, x), std::numbers::pi * 0.25e-12, 1e-27);
+}
+
+// A point sliding at height z = 2 R over a square layer of master particles
+// (spacing 2 R, radius R) in the plane z = 0: over a particle the gap is
+// z - R either way; midway between four particles (lateral distance
+// sqrt(2) R) the pinballs give sqrt(2 R^2 + z^2) - R = 1.449 R, the caps
+// (spheres of radius 4 R centred 3 R below each particle) sqrt(2 R^2 +
+// (z + 3 R)^2) - 4 R = 1.196 R: bumps of 0.196 R instead of 0.449 R. The
+// cap's normal is the gradient of its gap (what the Lagrange rows assume).
+TEST(SphContactSearch, caps_flatten_a_surface_layer_and_their_normal_is_the_gap_gradient) {
+  const double R = 0.5e-6, z = 2 * R;
+  std::vector<Vec3> x;
+  std::vector<int> ids;
+  for (int i = -1; i <= 2; ++i) {
+    for (int j = -1; j <= 2; ++j) {
+      ids.push_back(static_cast<int>(x.size()));
+      x.push_back(Vec3(2 * R * i, 2 * R * j, 0));
+    }
+  }
+  ContactSurface master = make_particle_surface(ids, std::vector<double>(ids.size(), R));
+  const int slave_id = static_cast<int>(x.size());
+  x.push_back(Vec3::Zero());
+  const ContactSurface slave = make_particle_surface({slave_id}, {0.0});
+  SearchSettings st;
+  st.search_margin = 2.0;  // keep every pair in range
+  auto smallest = [&](const Vec3& p) {
+    x[static_cast<std::size_t>(slave_id)] = p;
+    const auto pairs = find_pairs_all_pairs(master, slave, x, st);
+    EXPECT_FALSE(pairs.empty());
+    return pairs.empty() ? DetectedPair{} : pairs.front();
+  };
+  const Vec3 top(0, 0, z), middle(R, R, z);
+  EXPECT_NEAR(smallest(top).geometry.gap, z - R, 1e-18);
+  EXPECT_NEAR(smallest(middle).geometry.gap, std::sqrt(2 * R * R + z * z) - R, 1e-15);
+  master.cap_normal.assign(ids.size(), Vec3::UnitZ());
+  EXPECT_NEAR(smallest(top).geometry.gap, z - R, 1e-18);
+  const double cap_middle = std::sqrt(2 * R * R + (z + 3 * R) * (z + 3 * R)) - 4 * R;
+  EXPECT_NEAR(smallest(middle).geometry.gap, cap_middle, 1e-15);
+  EXPECT_LT(cap_middle - (z - R), 0.2 * R);
+  // The normal is the gradient of the gap of the same pair (central
+  // differences of step 1e-4 R).
+  const Vec3 p(0.3 * R, -0.7 * R, 1.8 * R);
+  const DetectedPair base = smallest(p);
+  const double h = 1e-4 * R;
+  Vec3 gradient;
+  for (int a = 0; a < 3; ++a) {
+    const Vec3 e = Vec3::Unit(a) * h;
+    x[static_cast<std::size_t>(slave_id)] = p + e;
+    double plus = 0.0, minus = 0.0;
+    for (const DetectedPair& q : find_pairs_all_pairs(master, slave, x, st)) {
+      if (q.face == base.face) plus = q.geometry.gap;
+    }
+    x[static_cast<std::size_t>(slave_id)] = p - e;
+    for (const DetectedPair& q : find_pairs_all_pairs(master, slave, x, st)) {
+      if (q.face == base.face) minus = q.geometry.gap;
+    }
+    gradient[a] = (plus - minus) / (2 * h);
+  }
+  EXPECT_LT((gradient - base.geometry.normal).norm(), 1e-6);
+  EXPECT_GT(base.geometry.normal.z(), 0.9);
 }
 
 // A stretched surface layer: two master particles 4 R apart (their layer

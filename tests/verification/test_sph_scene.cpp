@@ -16,21 +16,23 @@
 //    nodes): the balance closes to 3 %.
 //  - elastic_sph_ball_on_sph_block / elastic_sph_ball_on_fe_block: the ball
 //    (slave) hits a free elastic block at 20 m/s with Lagrange-multiplier
-//    contact: pinball pairs SPH-SPH (radius half the spacing) or SPH
-//    particles on the FE block's faces. Momentum is conserved to round-off
-//    (no external force; the contact impulses are equal and opposite), and
-//    energy (kinetic + internal + viscosity + hourglass work) to 1.5 % of the
-//    initial energy at the default stability 0.9 (measured 0.8 % SPH-SPH,
-//    1.0 % SPH-FE), shrinking with the step (SPH-SPH 0.30 % at 0.45, 0.01 % at
-//    0.225; SPH-FE 0.74 %, 0.57 %: the rest is the node-level impacts of the
-//    discrete contact, as in the FE-FE sphere test). The contact itself does
-//    almost no net work (< 1 % of E0).
+//    contact: SPH particles on the caps of the SPH block's surface particles
+//    (contact_search.hpp), or on the FE block's faces. Momentum is conserved
+//    to round-off (no external force; the contact impulses are equal and
+//    opposite), and energy (kinetic + internal + viscosity + hourglass work)
+//    to 2.5 % (SPH-SPH) and 1.5 % (SPH-FE) of the initial energy at the
+//    default stability 0.9 (measured 2.2 % and 1.0 %), shrinking with the
+//    step (SPH-SPH 1.1 % at 0.45; SPH-FE 0.74 %, 0.57 % at 0.45 and 0.225).
+//    The rest is the node-level impacts of the discrete contact, as in the
+//    FE-FE sphere test: the particles landing on the SPH block take 1.6 % of
+//    E0 (bound 2 %; 1.1 % with twice as many particles across; pinballs, where
+//    the particles nest in the hollows, took 0.4 %), on the FE block < 1 %.
 //  - sph_al_al_impact_600: the thesis's Al/Al SPH model (al-thesis ball of
 //    radius 12.5 um at 2.5 um spacing, 743 particles, on an al-thesis SPH
 //    block with absorbing sides and bottom) at 600 m/s for 300 steps (the
 //    ball flattening, plastic strain > 1): with one pinball pair per slave
 //    particle this blew up (contact work +250 E0 within 70 steps); now the
-//    energy balance stays within 10 % (measured -5.4 % at 150 steps: the
+//    energy balance stays within 10 % (measured -3.3 % at 300 steps: the
 //    node-level impacts of arriving particles) and the contact takes energy
 //    out, never puts it in.
 #include <gtest/gtest.h>
@@ -155,8 +157,9 @@ void check_block_impact(const std::string& block_discretization) {
         e.artificial_viscosity / e.initial_total, s.bodies[0].centroid_velocity.z(),
         c.max_pairs_in_contact, c.max_penetration);
     EXPECT_LT((momentum + Vec3(0, 0, p0)).norm(), 1e-10 * p0);
-    EXPECT_LT(std::abs(e.balance_error), stability > 0.5 ? 1.5e-2 : 1e-2);
-    EXPECT_LT(std::abs(e.contact_work), 1e-2 * e.initial_total);
+    const bool sph = block_discretization == "sph";
+    EXPECT_LT(std::abs(e.balance_error), (stability > 0.5 ? 1.5e-2 : 1e-2) + (sph ? 1e-2 : 0.0));
+    EXPECT_LT(std::abs(e.contact_work), (sph ? 2e-2 : 1e-2) * e.initial_total);
     EXPECT_GT(c.max_pairs_in_contact, 3);
     EXPECT_EQ(c.pairs_in_contact, 0);                   // separated at the end
     EXPECT_GT(s.bodies[0].centroid_velocity.z(), 5.0);  // rebounded
