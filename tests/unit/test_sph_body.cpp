@@ -39,6 +39,16 @@ ModelSwitches elastic_switches() {
   return sw;
 }
 
+// A box [0, side]^3 of particles 0.1 mm apart, m.
+ParticleSpec box_spec(Lattice lattice, double side) {
+  ParticleSpec s;
+  s.shape = ParticleShape::box;
+  s.lattice = lattice;
+  s.hi = Vec3::Constant(side);
+  s.spacing = 1e-4;
+  return s;
+}
+
 Mat3 random_matrix(std::mt19937_64& rng, double scale) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Mat3 m;
@@ -180,11 +190,7 @@ TEST(SphCorrection, ExactWithMirroredGhosts) {
 // update_point applied to a single point with the same increment; the pair
 // forces of the constant stress cancel in the interior and sum to zero.
 TEST(SphPatch, UniformStrainThroughTheMaterialKernel) {
-  ParticleSpec s;
-  s.shape = ParticleShape::box;
-  s.lattice = Lattice::hcp;
-  s.hi = Vec3(1.2e-3, 1.2e-3, 1.2e-3);
-  s.spacing = 1e-4;
+  ParticleSpec s = box_spec(Lattice::hcp, 1.2e-3);
   const ParticleCloud c = generate_particles(s);
   Mat3 G;
   G << 300.0, 120.0, -50.0,  //
@@ -245,11 +251,7 @@ TEST(SphPatch, UniformStrainThroughTheMaterialKernel) {
 // one material point driven by the same velocity gradient
 // L = A (I + t_mid A)^-1, and J_ref det F equals det(I + t A).
 TEST(SphReference, HomogeneousDeformationAcrossReferenceUpdates) {
-  ParticleSpec s;
-  s.shape = ParticleShape::box;
-  s.lattice = Lattice::hcp;
-  s.hi = Vec3(0.6e-3, 0.6e-3, 0.6e-3);
-  s.spacing = 1e-4;
+  ParticleSpec s = box_spec(Lattice::hcp, 0.6e-3);
   s.jitter = 0.1;
   const ParticleCloud c = generate_particles(s);
   Material mat;
@@ -346,11 +348,7 @@ TEST(SphCorrection, BoundedForAParticleWithOneNeighbour) {
 // stress at once and leaves every neighbour list at the next call (a
 // reference update); without the switch it stays.
 TEST(SphDamage, FailedParticleIsDeactivatedOnlyWhenAsked) {
-  ParticleSpec s;
-  s.shape = ParticleShape::box;
-  s.lattice = Lattice::cubic;
-  s.hi = Vec3(0.5e-3, 0.5e-3, 0.5e-3);
-  s.spacing = 1e-4;
+  ParticleSpec s = box_spec(Lattice::cubic, 0.5e-3);
   const ParticleCloud c = generate_particles(s);
   Material mat = elastic_aluminium();
   mat.damage.initiation = DamageInitiation::johnson_cook;
@@ -417,11 +415,7 @@ TEST(SphForces, ConserveLinearAndAngularMomentum) {
 // those next to the mirror plane, have none; particles in the middle of a
 // free face get its normal mapped by Nanson's rule, F^-T N (normalised).
 TEST(SphSurface, NormalsOfAMirroredBoxFollowItsFacesAndTheDeformation) {
-  ParticleSpec s;
-  s.shape = ParticleShape::box;
-  s.lattice = Lattice::cubic;
-  s.hi = Vec3(1.0e-3, 1.0e-3, 1.0e-3);
-  s.spacing = 1e-4;
+  ParticleSpec s = box_spec(Lattice::cubic, 1.0e-3);
   const ParticleCloud c = generate_particles(s);
   NodeSet nodes;
   SphBody body = make_sph_body("box", c, elastic_aluminium(), elastic_switches(), SphSettings{},
@@ -465,11 +459,7 @@ TEST(SphSurface, NormalsOfAMirroredBoxFollowItsFacesAndTheDeformation) {
 // compressed. The quarter Al/Al impact's step followed that distance down to
 // the floor when the bound read it.
 TEST(SphTimeStep, ParticleOnItsMirrorImageKeepsTheSignalSpeedBound) {
-  ParticleSpec s;
-  s.shape = ParticleShape::box;
-  s.lattice = Lattice::cubic;
-  s.hi = Vec3(6e-4, 6e-4, 6e-4);
-  s.spacing = 1e-4;
+  ParticleSpec s = box_spec(Lattice::cubic, 6e-4);
   const ParticleCloud c = generate_particles(s);
   const SymmetryPlanes planes = {{0, 0.0}};  // the particles nearest it at x = d / 2
   NodeSet nodes;
@@ -521,11 +511,7 @@ TEST(SphTimeStep, ParticleOnItsMirrorImageKeepsTheSignalSpeedBound) {
 // 0.05 d apart runs stably on the bound, which the springs then set, and
 // blows up at 0.9 of the signal-speed bound alone.
 TEST(SphTimeStep, HourglassSpringsOfAClosePairBoundTheStep) {
-  ParticleSpec s;
-  s.shape = ParticleShape::box;
-  s.lattice = Lattice::cubic;
-  s.hi = Vec3(5e-4, 5e-4, 5e-4);
-  s.spacing = 1e-4;
+  ParticleSpec s = box_spec(Lattice::cubic, 5e-4);
   ParticleCloud c = generate_particles(s);
   const double d = c.spacing;
   // The centre particle moves to 0.05 d from its neighbour along x.
