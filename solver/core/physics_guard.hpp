@@ -42,10 +42,11 @@
 // 0.05 reversing every step: 27 times the stress work; monotonic: 1.026
 // times, 1.002 at 0.01; tests/unit/test_plastic_work_booking.cpp).
 // Measured (Al/Al, plastic work minus internal energy over the initial
-// energy): FE axisymmetric at 800 m/s
-// -3.0 % and -1.1 % (8 and 16 across); the SPH Taylor bar 0.0 %; the SPH
-// quarter impact at 400 m/s +0.9 / +1.6 %, 600 m/s +7.1 / +10.8 %, 800 m/s
-// +11.7 / +20.0 % (6 / 10 spacings across R).
+// energy): FE axisymmetric at 800 m/s -3.0 % and -1.1 % (8 and 16 across);
+// the SPH Taylor bar 0.0 %; the SPH quarter impact at 400 m/s -0.4 / -0.6 %,
+// 600 m/s -0.1 / -0.3 %, 800 m/s +4.8 / +3.0 % (6 / 10 spacings across R;
+// docs/verification.md, SPH, for the contact that kicked its surface
+// particles to +20 %).
 #pragma once
 
 #include <optional>

@@ -661,6 +661,7 @@ void sph_build_reference(SphBody& b) {
   b.pair_visc.assign(np, 0.0f);
   b.null_projector.assign(n, Mat3::Zero());
   b.B.assign(n, Mat3::Zero());
+  b.surface_gradient.assign(n, Vec3::Zero());
 
   const long long count = static_cast<long long>(n);
   SPLAT_OMP(omp parallel for schedule(static) if (count >= min_parallel_particles))
@@ -668,6 +669,7 @@ void sph_build_reference(SphBody& b) {
     const std::size_t i = static_cast<std::size_t>(ii);
     const int begin = b.pairs.offsets[i], end = b.pairs.offsets[i + 1];
     Mat3 C = Mat3::Zero();
+    Vec3 colour_gradient = Vec3::Zero();
     for (int k = begin; k < end; ++k) {
       const std::size_t kk = static_cast<std::size_t>(k);
       const std::size_t j = static_cast<std::size_t>(b.pairs.j[kk]);
@@ -681,7 +683,11 @@ void sph_build_reference(SphBody& b) {
       b.pair_visc[kk] = static_cast<float>(b.material.density * b.volume0[j] * kv.dw_dr);
       const double s = -kv.dw_dr / r0;  // g_ij = s dX (uncorrected)
       b.pair_t[kk] = b.volume_ref[j] * s;
+      colour_gradient += b.pair_t[kk] * dX;
       C.noalias() += b.volume_ref[j] * dX * (s * dX).transpose();
+    }
+    if (colour_gradient.norm() * b.h[i] > k_surface_gradient) {
+      b.surface_gradient[i] = colour_gradient;
     }
     // C is symmetric positive semi-definite and close to I for a full
     // neighbourhood (about 1/2 across a flat free surface, less at edges and
@@ -949,15 +955,9 @@ Vec3 sph_pair_gradient(const SphBody& b, std::size_t k) {
 }
 
 Vec3 sph_surface_normal(const SphBody& b, std::size_t i) {
-  if (!b.active[i]) return Vec3::Zero();
-  Vec3 a = Vec3::Zero();
-  for (int q = b.pairs.offsets[i]; q < b.pairs.offsets[i + 1]; ++q) {
-    const std::size_t k = static_cast<std::size_t>(q);
-    const std::size_t j = static_cast<std::size_t>(b.pairs.j[k]);
-    a += b.pair_t[k] * (mirror_point(b.planes, b.pairs.op[k], b.X[j]) - b.X[i]);
-  }
+  const Vec3& a = b.surface_gradient[i];
   const Mat3& F = b.F[i];
-  if (!(a.norm() * b.h[i] > k_surface_gradient) || !(F.determinant() > 0.0)) return Vec3::Zero();
+  if (!b.active[i] || a.squaredNorm() == 0.0 || !(F.determinant() > 0.0)) return Vec3::Zero();
   const Vec3 n = -(F.inverse().transpose() * a);
   return n.allFinite() ? Vec3(n.normalized()) : Vec3::Zero();
 }

@@ -149,19 +149,21 @@ struct SphBody {
   std::vector<Vec3> outward_normal;  // of `curved` boundary particles, else zero
 
   // Set at the start and at each reference update.
-  std::vector<Vec3> X;               // reference positions, m
-  std::vector<double> volume_ref;    // reference volumes, m^3
-  std::vector<double> J_ref;         // volume_ref / volume0, -
-  std::vector<Mat3> F_ref;           // deformation of the reference from the initial state, -
-  std::vector<double> h;             // smoothing lengths, m
-  NeighbourList pairs;               // reference neighbours (local indices)
-  std::vector<double> pair_t;        // t_ij = V_j s_ij = -V_j W'(r0, h_ij) / r0, 1/m^2
-  std::vector<float> pair_hg;        // V_j W(r0, h_ij) / r0^2, 1/m^2 (float: read by
-  std::vector<float> pair_visc;      //   the stabilising terms only), m_j W'(r0, h_ij), kg/m^4
-  std::vector<Mat3> null_projector;  // I - C^+ C (zero unless C_i is singular)
-  std::vector<Mat3> B;               // kernel correction C_i^-1 (bounded), -
-  long long reference_updates = 0;   // count of updates so far
-  bool update_pending = false;       // forces an update at the next call
+  std::vector<Vec3> X;                 // reference positions, m
+  std::vector<double> volume_ref;      // reference volumes, m^3
+  std::vector<double> J_ref;           // volume_ref / volume0, -
+  std::vector<Mat3> F_ref;             // deformation of the reference from the initial state, -
+  std::vector<double> h;               // smoothing lengths, m
+  NeighbourList pairs;                 // reference neighbours (local indices)
+  std::vector<double> pair_t;          // t_ij = V_j s_ij = -V_j W'(r0, h_ij) / r0, 1/m^2
+  std::vector<float> pair_hg;          // V_j W(r0, h_ij) / r0^2, 1/m^2 (float: read by
+  std::vector<float> pair_visc;        //   the stabilising terms only), m_j W'(r0, h_ij), kg/m^4
+  std::vector<Mat3> null_projector;    // I - C^+ C (zero unless C_i is singular)
+  std::vector<Mat3> B;                 // kernel correction C_i^-1 (bounded), -
+  std::vector<Vec3> surface_gradient;  // sum_j V_j g_ij where its size marks a surface
+                                       //   (sph_surface_normal), else zero, 1/m
+  long long reference_updates = 0;     // count of updates so far
+  bool update_pending = false;         // forces an update at the next call
 
   // Every step.
   std::vector<PointState> state;      // material state
@@ -236,9 +238,10 @@ Vec3 sph_pair_gradient(const SphBody& body, std::size_t k);
 // The outward unit normal of particle i if it lies on the body's surface,
 // else zero: -F_i^-T a_i normalised (Nanson's rule), with a_i = sum_j V_j
 // grad_i W_ij, the uncorrected gradient of the reference neighbourhood's
-// volume fraction (mirrored ghosts included), zero inside the body and about
-// 1 / h on a face; i is on the surface when |a_i| h_i > k_surface_gradient.
-// Zero for inactive particles and det F_i <= 0.
+// volume fraction (mirrored ghosts included; kept as surface_gradient by
+// sph_build_reference), zero inside the body; i is on the surface when
+// |a_i| h_i > k_surface_gradient. Zero for inactive particles and
+// det F_i <= 0.
 inline constexpr double k_surface_gradient = 0.25;  // -
 Vec3 sph_surface_normal(const SphBody& body, std::size_t i);
 

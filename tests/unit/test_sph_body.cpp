@@ -429,27 +429,32 @@ TEST(SphSurface, NormalsOfAMirroredBoxFollowItsFacesAndTheDeformation) {
   const Vec3 top = (F.inverse().transpose() * Vec3::UnitZ()).normalized();
   const Vec3 side = (F.inverse().transpose() * Vec3::UnitX()).normalized();
   int inside = 0, on_top = 0, on_side = 0;
+  double weakest_face = 1e30;  // smallest |a| h of a face particle, -
   for (std::size_t i = 0; i < c.size(); ++i) {
     const Vec3 p = c.x[i];
     const double lo = std::min({p.y(), p.z()}), hi = (s.hi - p).minCoeff();
     const Vec3 n = sph_surface_normal(body, i);
-    if (std::min(lo, hi) > 2.5 * s.spacing) {  // two kernel radii from every free face
+    if (std::min(lo, hi) > 2.5 * s.spacing) {  // beyond the kernel's reach 2 h of every free face
       EXPECT_EQ(n.norm(), 0.0) << "interior particle " << i;  // the mirror plane included
       ++inside;
     } else if (s.hi.z() - p.z() < 0.6 * s.spacing &&
                std::min(lo, s.hi.x() - p.x()) > 2.5 * s.spacing &&
                s.hi.y() - p.y() > 2.5 * s.spacing) {
       EXPECT_GT(n.dot(top), std::cos(1e-6)) << "top face particle " << i;
+      weakest_face = std::min(weakest_face, body.surface_gradient[i].norm() * body.h[i]);
       ++on_top;
     } else if (s.hi.x() - p.x() < 0.6 * s.spacing &&
                std::min(lo, (s.hi - p).tail<2>().minCoeff()) > 2.5 * s.spacing) {
       EXPECT_GT(n.dot(side), std::cos(1e-6)) << "side face particle " << i;
+      weakest_face = std::min(weakest_face, body.surface_gradient[i].norm() * body.h[i]);
       ++on_side;
     }
   }
   EXPECT_GT(inside, 10);
   EXPECT_GT(on_top, 10);
   EXPECT_GT(on_side, 10);
+  std::printf("face particles: |a| h >= %.3f (threshold %.2f)\n", weakest_face, k_surface_gradient);
+  EXPECT_GT(weakest_face, 1.5 * k_surface_gradient);  // a face is well above the threshold
 }
 
 // The time-step bound follows the kernel's spacing, the compression of F and
