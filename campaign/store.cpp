@@ -590,8 +590,10 @@ int Store::recover_orphaned_jobs(const std::string& host, const std::string& own
                              !running_here(running.text(0));
       if (left_here || !owner_alive(owner)) orphans.push_back(running.text(0));
     }
+    // The job did not fail, its manager stopped: the attempt is given back,
+    // as for a host failure (requeue_job), so that the job keeps its retries.
     Statement requeue = db.prepare(
-        "UPDATE jobs SET state = 'queued', owner = '', "
+        "UPDATE jobs SET state = 'queued', owner = '', attempts = MAX(attempts - 1, 0), "
         "exit_reason = 'requeued: its manager stopped while it ran' WHERE hash = ?");
     for (const std::string& h : orphans) {
       requeue.reset();

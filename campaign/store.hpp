@@ -222,9 +222,9 @@ class Store {
   // the job never started), so it does not use up the job's retries.
   void requeue_job(const std::string& hash, const std::string& reason, bool attempt_counts = true);
   // Jobs left `running` by managers of `host` (owner "host:...") that no longer exist (killed,
-  // even with SIGKILL) go back to the queue. So do those of `own_owner` (this process) for
-  // which `running_here` is false: left by an earlier run of this process that a store error
-  // ended. Returns how many.
+  // even with SIGKILL) go back to the queue, their attempt given back. So do those of `own_owner`
+  // (this process) for which `running_here` is false: left by an earlier run of this process that a
+  // store error ended. Returns how many.
   int recover_orphaned_jobs(const std::string& host, const std::string& own_owner = {},
                             const std::function<bool(const std::string&)>& running_here = {});
   // Cancellation: marks the campaign `cancelling` (a running manager sees it

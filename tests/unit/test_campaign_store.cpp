@@ -192,10 +192,13 @@ TEST(campaign_store, orphaned_running_jobs_return_to_the_queue) {
   ASSERT_TRUE(s.claim_next_job(c, this_process_owner(), host));
   EXPECT_FALSE(owner_alive(dead));
   EXPECT_TRUE(owner_alive(this_process_owner()));
+  EXPECT_EQ(s.job("h1")->attempts, 1);
   EXPECT_EQ(s.recover_orphaned_jobs(host), 1);
   EXPECT_EQ(s.job("h1")->state, JobState::queued);
   EXPECT_EQ(s.job("h1")->exit_reason, "requeued: its manager stopped while it ran");
+  EXPECT_EQ(s.job("h1")->attempts, 0);  // the job did not fail: its retries are intact
   EXPECT_EQ(s.job("h2")->state, JobState::running);
+  EXPECT_EQ(s.job("h2")->attempts, 1);
 }
 
 TEST(campaign_store, cancellation_marks_queued_jobs_and_the_campaign) {
