@@ -62,11 +62,14 @@ std::vector<int> elements_of_node(const FeBody& body, int g) {
 }
 
 // Sets the deformed pinballs of SPH surface s from its body's deformation
-// gradients (set_pinball_shape, ContactSurface::radius_along).
+// gradients (set_pinball_shape, ContactSurface::radius_along) and their
+// shares of its surface (sph_surface_area).
 void follow_particle_shapes(ContactSurface& s, const SphBody& body) {
+  s.area.resize(s.nodes.size());
   for (std::size_t k = 0; k < s.nodes.size(); ++k) {
     const std::size_t i = static_cast<std::size_t>(s.nodes[k]) - body.node_begin;
     set_pinball_shape(s, static_cast<int>(k), body.F[i] * body.F_ref[i]);
+    s.area[k] = sph_surface_area(body, i);
   }
 }
 
@@ -454,13 +457,14 @@ void ContactInterface::drop_repeated_rows(const NodeSet& nodes,
 }
 
 double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x) const {
-  // Thesis 2.2.4: SPH-SPH pi R^2 with the mean radius of the two particles;
-  // SPH on an FE face the smaller of the face area and pi R^2 (below).
+  // Thesis 2.2.4 gives SPH links pi R^2, which on a lattice adds up to
+  // 0.56-0.93 of the surface; here each particle bonds its share of its
+  // body's surface as it is now (sph_surface_area: stretched as an FE face
+  // follows its nodes), the smaller side's share, as on FE faces (below).
   if (master_.kind == DetectionKind::particle_pinball && f >= 0) {
-    const double R = 0.5 * (slave_.node_radius(k) + master_.node_radius(f));
-    return std::numbers::pi * R * R;
+    return std::min(slave_.pinball_area(k), master_.pinball_area(f));
   }
-  const double own = slave_node_area(slave_, k, x);
+  const double own = slave_.radius.empty() ? slave_node_area(slave_, k, x) : slave_.pinball_area(k);
   if (master_.kind == DetectionKind::node_on_segment || f < 0) return own;
   const auto& ids = master_.faces[f];
   return std::min(own, quad_area({x[ids[0]], x[ids[1]], x[ids[2]], x[ids[3]]}));

@@ -723,6 +723,35 @@ void sph_build_reference(SphBody& b) {
   b.Fdot.assign(n, Mat3::Zero());
 }
 
+namespace {
+
+// The initial shares of the surface (sph_surface_area): V_i |a_i| / kappa on
+// the surface, V_i^(2/3) off it (kept for particles that reach it later).
+std::vector<double> initial_surface_shares(const SphBody& b) {
+  const std::size_t n = b.size();
+  Vec3 o = Vec3::Zero();
+  double volume = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    o += b.volume0[i] * b.X[i];
+    volume += b.volume0[i];
+  }
+  o /= volume;
+  for (const SymmetryPlane& p : b.planes) o[p.axis] = p.position;
+  double moment = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    moment -= b.volume0[i] * (b.X[i] - o).dot(b.surface_gradient[i]);
+  const double kappa = moment / (3.0 * volume);
+  std::vector<double> area(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = b.surface_gradient[i].norm();
+    area[i] =
+        a > 0.0 && kappa > 0.0 ? b.volume0[i] * a / kappa : std::cbrt(b.volume0[i] * b.volume0[i]);
+  }
+  return area;
+}
+
+}  // namespace
+
 SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const Material& material,
                       const ModelSwitches& switches, const SphSettings& settings,
                       const SymmetryPlanes& planes, const Vec3& velocity, double temperature,
@@ -753,6 +782,7 @@ SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const
   b.volume_ref = cloud.volume;
   b.J_ref.assign(n, 1.0);
   b.F_ref.assign(n, Mat3::Identity());
+  b.surface_stretch_ref.assign(n, 1.0);
   b.h.assign(n, h0);
   b.state.resize(n);
   b.record.assign(n, SphPairRecord{});
@@ -770,6 +800,7 @@ SphBody make_sph_body(const std::string& name, const ParticleCloud& cloud, const
     b.state[i] = initial_point_state(material, switches, temperature, D0);
   }
   sph_build_reference(b);
+  b.surface_area0 = initial_surface_shares(b);
   return b;
 }
 
@@ -781,6 +812,7 @@ void sph_update_reference(SphBody& b, const NodeSet& nodes) {
   for (long long ii = 0; ii < count; ++ii) {
     const std::size_t i = static_cast<std::size_t>(ii);
     b.X[i] = nodes.x[b.node_begin + i];
+    b.surface_stretch_ref[i] = sph_surface_stretch(b, i);
     const double J = b.F[i].determinant();
     if (b.active[i] && J > 0.0) {
       b.volume_ref[i] *= J;
@@ -960,6 +992,21 @@ Vec3 sph_surface_normal(const SphBody& b, std::size_t i) {
   if (!b.active[i] || a.squaredNorm() == 0.0 || !(F.determinant() > 0.0)) return Vec3::Zero();
   const Vec3 n = -(F.inverse().transpose() * a);
   return n.allFinite() ? Vec3(n.normalized()) : Vec3::Zero();
+}
+
+double sph_surface_area(const SphBody& b, std::size_t i) {
+  return b.surface_area0[i] * sph_surface_stretch(b, i);
+}
+
+double sph_surface_stretch(const SphBody& b, std::size_t i) {
+  const double at_reference = b.surface_stretch_ref[i];
+  const Mat3& F = b.F[i];
+  const double J = F.determinant();
+  if (!b.active[i] || !(J > 0.0)) return at_reference;
+  const Vec3& a = b.surface_gradient[i];
+  if (a.squaredNorm() == 0.0) return at_reference * std::cbrt(J * J);
+  const double ratio = J * (F.inverse().transpose() * a.normalized()).norm();
+  return std::isfinite(ratio) ? at_reference * ratio : at_reference;
 }
 
 namespace {
