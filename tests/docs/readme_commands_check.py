@@ -31,7 +31,10 @@ each failure naming the README line and the rule:
 - produced: every /tmp/splat file the README names (not the output of a
   command left unrun) exists after the runs;
 - ctest, route: a `ctest -L/-R` selects a label and a test that exist; a
-  `curl` route is in api/README.md.
+  `curl` route is in api/README.md;
+- python: each fenced python block runs (from the source folder, on the
+  /tmp/splat files the README's runs made) and exits 0 within the time
+  limit.
 
 Commands not run (placeholders such as NAME or CAMPAIGN, `serve`, finer
 ladders, Slurm) get every static check.
@@ -653,6 +656,34 @@ def check_produced(runner, blocks, prose, commands, fails):
                 fails.add(c.line, "produced", f"--field {field}: no such array in {os.path.basename(xmf)}")
 
 
+def check_python_blocks(runner, blocks, fails):
+    """Each python block runs with this interpreter, from the source folder,
+    its /tmp/splat paths mapped to the runs' folder, and exits 0."""
+    for lang, start, body, _ in blocks:
+        if lang != "python":
+            continue
+        code = "\n".join(t for _, t in body)
+        paths = sorted(set(m.group(0) for m in
+                           re.finditer(re.escape(README_SCRATCH) + r"[\w./-]*", code)))
+        missing = [p for p in paths if not os.path.exists(runner.map_word(p))]
+        if missing:
+            fails.add(start, "python", f"{missing[0]}: the README's runs made no such file")
+            continue
+        for p in paths:
+            code = code.replace(p, runner.map_word(p))
+        try:
+            r = subprocess.run([sys.executable, "-c", code], cwd=runner.src, capture_output=True,
+                               text=True, timeout=RUN_LIMIT_S)
+        except subprocess.TimeoutExpired:
+            fails.add(start, "python", f"the block ran longer than {RUN_LIMIT_S} s")
+            continue
+        if r.returncode != 0:
+            last = (r.stderr.strip().splitlines() or ["(no message)"])[-1]
+            fails.add(start, "python", f"the block exits {r.returncode}: {last}")
+        else:
+            print(f"readme: line {start}: ran the python block (exit 0)")
+
+
 # ---- main -----------------------------------------------------------------------
 
 def main(argv):
@@ -715,6 +746,7 @@ def main(argv):
                 runner.run(c, fails)
 
     check_produced(runner, blocks, prose, commands, fails)
+    check_python_blocks(runner, blocks, fails)
 
     ran = sum(c.ran for c in commands)
     print(f"readme: {ran} commands run, {len(commands) - ran} checked without running, "
