@@ -56,6 +56,10 @@ bool ImpactMonitor::held(const ImpactSample& s) {
 
 std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
   if (kinetic_0_ < 0.0) kinetic_0_ = s.kinetic_rel;
+  if (s.v_normal > 0.0 && !sprung_back_) {
+    sprung_back_ = true;
+    stick_stopped_ = false;  // it must stop again, now against its bond
+  }
 
   const bool rebounding = s.links_active == 0 && s.pairs_in_contact == 0 && s.v_normal > 0.0;
   if (!rebounding) {
@@ -84,10 +88,11 @@ std::optional<VerdictDecision> ImpactMonitor::update(const ImpactSample& s) {
   }
   // A held particle stops receding within the window (it rings about its
   // bonded position); one still receding is loading a bond that may yet
-  // break.
+  // break. One that never receded has not yet sprung back: the elastic
+  // energy of the impact has not loaded its bond.
   if (holding && s.v_normal <= 0.0) stick_stopped_ = true;
   const bool calm = s.kinetic_rel <= settings_.settle_fraction * kinetic_0_;
-  if (holding && stick_since_ >= 0.0 && calm && stick_stopped_ &&
+  if (holding && stick_since_ >= 0.0 && calm && stick_stopped_ && sprung_back_ &&
       s.time - stick_since_ >= settings_.hold_time) {
     return VerdictDecision{
         ImpactVerdict::stick, true,

@@ -30,9 +30,13 @@
 //   rebound  no active link, no pair carrying a force, and v_n > 0, all held
 //            for `hold_time`: nothing can pull the particle back;
 //   stick    held, no link lost, bonded area steady (within 1 %) for
-//            `hold_time`, the particle stopped receding (v_n <= 0) at least
-//            once in that window, and K_rel <= settle_fraction K_0: the
-//            particle is held and its motion has died down.
+//            `hold_time`, the particle receded (v_n > 0) at least once
+//            since the impact and stopped receding (v_n <= 0) at least once
+//            in that window, and K_rel <= settle_fraction K_0: the particle
+//            sprang back, is held and its motion has died down. A particle
+//            at rest at the bottom of its crater has not yet given back the
+//            elastic energy that loads its bond (K_sep is then zero,
+//            whatever that energy).
 // At the maximum time without a settled verdict: undecided while the particle
 // still moves into the substrate with more than settle_fraction K_0 (the
 // impact is not over); else stick if held, rebound if the particle leaves
@@ -116,6 +120,7 @@ class ImpactMonitor {
   double stick_area_ = 0.0;
   double stick_damage_ = 0.0;   // bond_damage at the start of the stick window
   bool stick_stopped_ = false;  // v_n <= 0 at a sample of the current stick window
+  bool sprung_back_ = false;    // v_n > 0 at a sample: the spring-back has begun
   double min_offset_ = 0.0;     // smallest d since the set of active links last changed, m
   long long offset_links_ = 0;  // active links when min_offset_ was last reset
   bool linked_ = false;         // links were active at the last sample

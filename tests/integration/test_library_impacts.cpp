@@ -48,10 +48,13 @@ struct KnownFailure {
   const char* guard;  // what stops it (RunSummary::reason contains it)
 };
 
-// zn-sg at 800 m/s: the contact lets two particle nodes through (0.76 element
-// sizes) since the Steinberg-Guinan law has its pressure term; at 12 and 16
-// elements across it rebounds (docs/validation.md, "Material library").
-constexpr KnownFailure known_failures[] = {{"zn-sg", 800.0, "interpenetration"}};
+// zn-sg at 800 m/s: no link activates and the particle is still at rest in
+// its crater at the maximum time (307 ns), moving in at 4.9 m/s: undecided.
+// Before a stick needed the spring-back, a premature stick at 63 ns caught
+// two particle nodes 0.76 element sizes inside the substrate
+// (interpenetration). At 12 and 16 elements across it rebounds
+// (docs/validation.md, "Material library").
+constexpr KnownFailure known_failures[] = {{"zn-sg", 800.0, "undecided"}};
 
 const KnownFailure* known_failure(const std::string& material, double v) {
   for (const KnownFailure& f : known_failures)
