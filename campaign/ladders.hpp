@@ -8,7 +8,7 @@
 // cost of the level. Each edge then gets a value and an error:
 // - extrapolated: the three finest levels at a constant ratio r (to 1 %)
 //   converge monotonically (Richardson, solver/core/richardson.hpp, observed
-//   order p > 0); value f*, error = 1.25 |f* - f_finest| (Roache's grid
+//   order p >= 0.5); value f*, error = 1.25 |f* - f_finest| (Roache's grid
 //   convergence index with safety factor 1.25, "Verification and Validation
 //   in Computational Science and Engineering", 1998, ch. 5) plus the finest
 //   bracket's half-width;

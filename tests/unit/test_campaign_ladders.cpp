@@ -53,6 +53,16 @@ TEST(campaign_ladders, second_order_edges_extrapolate_to_the_limit) {
   EXPECT_NEAR(*e.error, 1.25 * (limit - f[2]) + 5.0, 1e-9);
 }
 
+// Edges whose moves barely shrink (884 / 828 / 775 m/s, moves 56 then 53,
+// observed order 0.08) are not extrapolated (to -155 m/s): not-converged,
+// the finest value with the last move as its error.
+TEST(campaign_ladders, edges_that_barely_converge_are_not_extrapolated) {
+  const LadderEdge e = ladder_edge({8, 16, 32}, edges({884, 828, 775}, 3.0));
+  ASSERT_EQ(e.status, LadderStatus::not_converged);
+  EXPECT_NEAR(*e.value, 775.0, 1e-9);
+  EXPECT_NEAR(*e.error, 53.0 + 3.0, 1e-9);
+}
+
 // Edges that move back and forth (the FE Al/Al band 290 / 310 / 290 m/s)
 // are not extrapolated: value the finest, error the last move plus the
 // finest half-width.
