@@ -62,15 +62,22 @@ std::vector<int> elements_of_node(const FeBody& body, int g) {
 }
 
 // Sets the deformed pinballs of SPH surface s from its body's deformation
-// gradients (set_pinball_shape, ContactSurface::radius_along) and their
-// shares of its surface (sph_surface_area).
+// gradients (set_pinball_shape, ContactSurface::radius_along).
 void follow_particle_shapes(ContactSurface& s, const SphBody& body) {
-  s.area.resize(s.nodes.size());
   for (std::size_t k = 0; k < s.nodes.size(); ++k) {
     const std::size_t i = static_cast<std::size_t>(s.nodes[k]) - body.node_begin;
     set_pinball_shape(s, static_cast<int>(k), body.F[i] * body.F_ref[i]);
-    s.area[k] = sph_surface_area(body, i);
   }
+}
+
+// Particle k of particle surface s: its share of its body's surface now
+// (sph_surface_area), or pi R^2 of its pinball without a body (`body` null).
+double particle_area(const ContactSurface& s, int k, const SphBody* body) {
+  if (body == nullptr) {
+    const double R = s.node_radius(k);
+    return std::numbers::pi * R * R;
+  }
+  return sph_surface_area(*body, static_cast<std::size_t>(s.nodes[k]) - body->node_begin);
 }
 
 // Sets the cap normals of SPH master surface s: each particle's outward
@@ -456,15 +463,21 @@ void ContactInterface::drop_repeated_rows(const NodeSet& nodes,
   build_problem(nodes, mask, pairs, dt);
 }
 
-double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x) const {
+double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x,
+                                       const std::vector<SphBody>& sph) const {
+  const SphBody* slave_body =
+      slave_sph_ && slave_index_ < sph.size() ? &sph[slave_index_] : nullptr;
+  const SphBody* master_body =
+      master_sph_ && master_index_ < sph.size() ? &sph[master_index_] : nullptr;
   // Thesis 2.2.4 gives SPH links pi R^2, which on a lattice adds up to
   // 0.56-0.93 of the surface; here each particle bonds its share of its
   // body's surface as it is now (sph_surface_area: stretched as an FE face
   // follows its nodes), the smaller side's share, as on FE faces (below).
   if (master_.kind == DetectionKind::particle_pinball && f >= 0) {
-    return std::min(slave_.pinball_area(k), master_.pinball_area(f));
+    return std::min(particle_area(slave_, k, slave_body), particle_area(master_, f, master_body));
   }
-  const double own = slave_.radius.empty() ? slave_node_area(slave_, k, x) : slave_.pinball_area(k);
+  const double own =
+      slave_.radius.empty() ? slave_node_area(slave_, k, x) : particle_area(slave_, k, slave_body);
   if (master_.kind == DetectionKind::node_on_segment || f < 0) return own;
   const auto& ids = master_.faces[f];
   return std::min(own, quad_area({x[ids[0]], x[ids[1]], x[ids[2]], x[ids[3]]}));
@@ -663,7 +676,7 @@ void ContactInterface::update_links_before_solve(const NodeSet& nodes,
     link_state_[k] = after;
     if (after == LinkState::active) {
       ++stats_.links_activated;
-      link_area_[k] = adhesive_area(k, link_face_[k], nodes.x);
+      link_area_[k] = adhesive_area(k, link_face_[k], nodes.x, sph);
     }
     if (after == LinkState::eroded) ++stats_.links_eroded;
   }

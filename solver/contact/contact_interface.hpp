@@ -238,8 +238,10 @@ class ContactInterface {
   // The adhesion law of slave node k's link: the scene's, with the link's
   // strength (link_strength) as its fixed cap.
   AdhesionParams link_params(int k) const;
-  // Adhesive area of slave node k over master face f, m^2 (per radian in 2D).
-  double adhesive_area(int k, int f, const std::vector<Vec3>& x) const;
+  // Adhesive area of slave node k over master face f, m^2 (per radian in 2D);
+  // `sph` gives SPH sides their particles' shares of the surface.
+  double adhesive_area(int k, int f, const std::vector<Vec3>& x,
+                       const std::vector<SphBody>& sph) const;
   // The yield ratio and damage of each side of slave node k's link.
   InterfaceSideState slave_side_state(const FeBody& slave, int k) const;
   InterfaceSideState master_side_state(const FeBody& master, int f) const;

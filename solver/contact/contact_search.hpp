@@ -45,7 +45,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <numbers>
 #include <vector>
 
 #include "solver/common/types.hpp"
@@ -72,9 +71,6 @@ struct ContactSurface {
   // the largest radius its pinball reaches, m. Empty: spheres of `radius`.
   std::vector<Mat3> inverse_stretch;
   std::vector<double> reach;
-  // Each particle's share of its body's surface now (sph_surface_area; set
-  // with the shapes), m^2. Empty: pi R^2.
-  std::vector<double> area;
   // Caps (SPH masters; set every step by the contact interface): the outward
   // unit normal of each particle on the body's surface, zero inside. Empty:
   // every particle is a pinball.
@@ -92,11 +88,6 @@ struct ContactSurface {
     return 4;
   }
   double node_radius(int k) const { return radius.empty() ? 0.0 : radius[k]; }
-  // Pinball k's share of its body's surface now, m^2.
-  double pinball_area(int k) const {
-    const double R = node_radius(k);
-    return area.empty() ? std::numbers::pi * R * R : area[k];
-  }
   double node_reach(int k) const { return reach.empty() ? node_radius(k) : reach[k]; }
   // Radius of node k's pinball along the unit vector n, m. A deformed
   // particle's pinball is its initial ball mapped by F, an ellipsoid of
