@@ -16,6 +16,7 @@
 #include "solver/common/parallel.hpp"
 #include "solver/core/model_builder.hpp"
 #include "solver/core/simulation_impl.hpp"
+#include "solver/fe/heat_conduction.hpp"
 #include "solver/io/result_file.hpp"
 #include "solver/scene/velocity_history.hpp"
 
@@ -200,7 +201,7 @@ bool Simulation::Impl::internal_forces(RunSummary& s) {
   dt_stable = std::numeric_limits<double>::infinity();
   for (FeBody& body : model.bodies) {
     FeStepResult r = fe_internal_forces(body, n, dt_half);
-    dt_stable = std::min(dt_stable, r.dt_stable);
+    dt_stable = std::min({dt_stable, r.dt_stable, fe_conduct_heat(body, n, dt_half)});
     energy.hourglass += r.hourglass_power * dt_half * scale();
     energy.artificial_viscosity += r.viscosity_power * dt_half * scale();
     max_return_iterations = std::max(max_return_iterations, r.max_return_iterations);

@@ -10,6 +10,7 @@
 #include "solver/common/simd_lanes.hpp"
 #include "solver/fe/bulk_viscosity.hpp"
 #include "solver/fe/fe_block.hpp"
+#include "solver/fe/heat_conduction.hpp"
 #include "solver/fe/hex8.hpp"
 #include "solver/fe/quad4_axisym.hpp"
 #include "solver/material/damage.hpp"
@@ -127,6 +128,7 @@ void finish_body(FeBody& body, NodeSet& nodes, double temperature, unsigned long
       body.node_force_offsets[k] = static_cast<std::uint32_t>(body.force_index(e, a, 0));
     }
   }
+  build_heat_faces(body);
 }
 
 // Global id of local mesh node `local`, checked against the mesh's node count.

@@ -55,6 +55,15 @@ struct FeSettings {
   bool erosion_on_damage = true;       // erosion also at the damage cap (else only geometric)
 };
 
+// A face element e shares with element `neighbour` of the same body: its
+// nodes in the cyclic order of the element that lists it first (quads use
+// the first 2), the same array on both sides so that both compute the same
+// conductance.
+struct HeatFace {
+  int neighbour = 0;
+  std::array<int, 4> nodes{};
+};
+
 struct FeBody {
   std::string name;
   ElementKind kind = ElementKind::hex8;
@@ -76,6 +85,11 @@ struct FeBody {
   // node conn[e][a] + l. The element loop loads such a run's node positions
   // and velocities as whole vectors (structured meshes are mostly runs).
   std::vector<std::uint8_t> node_run;
+  // Heat conduction (heat_conduction.hpp): element e's faces shared with
+  // another element are heat_faces[heat_offsets[e] .. heat_offsets[e + 1]);
+  // both empty when the body conducts no heat.
+  std::vector<int> heat_offsets;
+  std::vector<HeatFace> heat_faces;
 
   // Every step.
   std::vector<PointState> state;        // material state at the element centre
@@ -85,6 +99,8 @@ struct FeBody {
   std::vector<std::array<Vec3, 4>> hg;  // stiffness-form hourglass generalised forces
   std::vector<double> hg_kappa;         // stiffness-form kappa that hg was built with
   std::vector<std::uint8_t> active;     // 0 once eroded
+  std::vector<double> heat_in;          // scratch: heat an element receives in a step, J
+                                        //   (2D: per radian)
   std::vector<double> elem_force;       // scratch: element nodal forces, N, in lane order
                                         //   (component i of element e's node a at
                                         //   force_index(e, a, i)); an eroded element's are 0

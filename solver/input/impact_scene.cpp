@@ -79,11 +79,12 @@ double hertz_time(double R, double M, double E_star, double v) {
   return 2.87 * std::pow(M * M / (R * E_star * E_star * v), 0.2);
 }
 
-json switches(bool damage) {
+json switches(bool damage, bool heat_conduction) {
   return {{"damage", damage},
           {"thermal_softening", true},
           {"rate_hardening", true},
-          {"adiabatic_heating", true}};
+          {"adiabatic_heating", true},
+          {"heat_conduction", heat_conduction}};
 }
 
 json vec(double x, double y, double z) {
@@ -349,6 +350,12 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
 
   const bool axi = is_axisymmetric(c.model);
   const bool quarter = is_quarter(c.model);
+  const bool conduction = pi.value("heat_conduction", false);
+  if (conduction && (sph || sph_substrate)) {
+    fail(base + "/heat_conduction",
+         "SPH bodies conduct no heat; ask for an FE fidelity (fe-axisym, fe-3d-quarter, "
+         "fe-3d-full)");
+  }
   const double rad = angle * k_pi / 180.0;
   // SPH substrate block: a whole number of spacings, so the cubic lattice
   // keeps the spacing h exactly.
@@ -369,7 +376,7 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
       {"initial",
        {{"velocity", vec(v * std::sin(rad), 0.0, -v * std::cos(rad))},
         {"temperature", particle.value("temperature", strength_references(mp.strength).T_ref)}}},
-      {"switches", switches(damage)}};
+      {"switches", switches(damage, conduction)}};
   if (sph) {
     // Ball centre R + 0.1 spacing above the surface (particle centres lie
     // within R of it; the pinballs, radius h / 2, start just touching).
@@ -407,7 +414,7 @@ ExpandedImpact expand_particle_impact(const json& doc, const std::filesystem::pa
         {"material", substrate.value("material", particle.at("material"))},
         {"initial",
          {{"temperature", substrate.value("temperature", strength_references(ms.strength).T_ref)}}},
-        {"switches", switches(damage)}};
+        {"switches", switches(damage, conduction)}};
     if (sph_substrate) {
       json block_sph = sph_settings;
       if (!block_sph.contains("lattice")) block_sph["lattice"] = "cubic";

@@ -241,6 +241,8 @@ void check_metal_magnitudes(const json& doc, const std::vector<SchemaViolation>&
                   out);
   check_magnitude(doc, schema_errors, "/thermal/c_p",
                   {50.0, 5000.0, false, "J/(kg K)", "50 to 5000 J/(kg K)"}, out);
+  check_magnitude(doc, schema_errors, "/thermal/conductivity",
+                  {1.0, 1000.0, false, "W/(m K)", "1 to 1000 W/(m K)"}, out);
   with_law_named(string_at(doc, "/strength/model"), [&](const auto& law) {
     for (const auto& f : law.fields()) {
       if (const std::optional<MagnitudeRange> r = metal_range(f.quantity)) {
@@ -289,6 +291,7 @@ Material material_from_json(const json& doc) {
   const json& th = doc.at("thermal");
   m.thermal.c_p = th.at("c_p").get<double>();
   m.thermal.heat_fraction = th.value("heat_fraction", m.thermal.heat_fraction);
+  m.thermal.conductivity = th.value("conductivity", 0.0);
 
   const json& eos = doc.at("eos");
   m.eos.model = eos.at("model").get<std::string>() == "mie-gruneisen" ? EosModel::mie_gruneisen
@@ -339,6 +342,7 @@ json material_to_json(const Material& m) {
       {"strength", strength_to_json(m.strength)},
       {"thermal", {{"c_p", m.thermal.c_p}, {"heat_fraction", m.thermal.heat_fraction}}},
   };
+  if (m.thermal.conductivity > 0.0) doc["thermal"]["conductivity"] = m.thermal.conductivity;
   json eos = {{"model", m.eos.model == EosModel::mie_gruneisen ? "mie-gruneisen" : "linear"}};
   if (m.eos.mie_gruneisen) {
     const MieGruneisenParams& mg = *m.eos.mie_gruneisen;

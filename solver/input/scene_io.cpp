@@ -434,6 +434,12 @@ BodySpec parse_body(const json& j, const std::string& p, const std::filesystem::
   b.switches.thermal_softening = value_or(sw, "thermal_softening", true);
   b.switches.rate_hardening = value_or(sw, "rate_hardening", true);
   b.switches.adiabatic_heating = value_or(sw, "adiabatic_heating", true);
+  b.switches.heat_conduction = value_or(sw, "heat_conduction", false);
+  if (b.switches.heat_conduction && b.discretization == Discretization::sph) {
+    problems.add(
+        p + "/switches/heat_conduction",
+        "SPH bodies conduct no heat; set it false, or model the body with finite elements");
+  }
 
   const json& hg = member_or_empty(j, "hourglass");
   b.hourglass = from_name(hourglass_names, value_or(hg, "type", std::string("viscous")));
@@ -489,7 +495,8 @@ json body_to_json(const BodySpec& b) {
        {{"damage", b.switches.damage},
         {"thermal_softening", b.switches.thermal_softening},
         {"rate_hardening", b.switches.rate_hardening},
-        {"adiabatic_heating", b.switches.adiabatic_heating}}},
+        {"adiabatic_heating", b.switches.adiabatic_heating},
+        {"heat_conduction", b.switches.heat_conduction}}},
       {"hourglass",
        {{"type", name_of(hourglass_names, b.hourglass)}, {"coefficient", b.hourglass_coefficient}}},
       {"artificial_viscosity", {{"linear", b.q_linear}, {"quadratic", b.q_quadratic}}},

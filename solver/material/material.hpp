@@ -25,6 +25,7 @@ struct ElasticParams {
 struct ThermalParams {
   double c_p = 0.0;            // specific heat, J/(kg K)
   double heat_fraction = 0.9;  // inelastic heat fraction (Taylor-Quinney), -
+  double conductivity = 0.0;   // thermal conductivity k, W/(m K); 0 = not given
 };
 
 enum class EosModel { linear, mie_gruneisen };

@@ -63,6 +63,22 @@ void set_strength(const JohnsonCookParams& jc, const ModelSwitches& sw, PointSta
 
 }  // namespace
 
+void add_heat(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
+              PointState& st, double q) {
+  if (mc.rho0 * mc.c_p <= 0.0 || q == 0.0) return;
+  st.e += q;
+  st.T += q / (mc.rho0 * mc.c_p);
+  if (const auto* jc = std::get_if<JohnsonCookParams>(&m.strength)) {
+    const double rate = st.sigma_y_static > 0.0 ? st.sigma_y / st.sigma_y_static : 1.0;
+    st.strength_scale = (1.0 - st.D) * jc_thermal_factor(*jc, sw.thermal_softening, st.T);
+    st.sigma_y_static = st.strength_scale * st.hardening;
+    st.sigma_y = st.sigma_y_static * rate;
+  } else {
+    std::visit([&](const auto& law) { set_strength(law, sw, st); }, m.strength);
+  }
+  st.sigma_y_static_peak = std::max(st.sigma_y_static_peak, st.sigma_y_static);
+}
+
 PointState initial_point_state(const Material& m, const ModelSwitches& sw, double T0, double D0) {
   PointState st;
   st.T = T0;

@@ -93,6 +93,14 @@ PointUpdateResult update_point_general(const Material& m, const MaterialConstant
                                        const ModelSwitches& sw, PointState& st, const Mat3& d_eps,
                                        double J_new, double dt, double length);
 
+// Heat q (J per m^3 of reference volume, either sign) brought to the point
+// from outside its own update (conduction from its neighbours): the internal
+// energy e and the temperature (by q / (rho0 c_p)) rise, and the strength
+// caches follow the new temperature, the rate factor of the last plastic
+// step kept. A point that has no heat capacity is left unchanged.
+void add_heat(const Material& m, const MaterialConstants& mc, const ModelSwitches& sw,
+              PointState& st, double q);
+
 // The material update of a block of n points, as the element and particle
 // loops call it (one call per block): states[index[k]] advances as
 // update_point(m, mc, sw, states[index[k]], d_eps[k], J_new[k], dt, length[k])

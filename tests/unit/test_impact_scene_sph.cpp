@@ -177,5 +177,24 @@ TEST(ImpactSceneSph, contradictions_name_the_field) {
   EXPECT_NE(first_error(impact(b)).find("/particle_impact/particle/spacing"), std::string::npos);
 }
 
+TEST(ImpactSceneSph, heat_conduction_is_refused_for_sph_and_reaches_both_fe_bodies) {
+  json b = al_on_al(600.0, "sph");
+  b["heat_conduction"] = true;
+  EXPECT_EQ(first_error(impact(b)),
+            "/particle_impact/heat_conduction: SPH bodies conduct no heat; ask for an FE fidelity "
+            "(fe-axisym, fe-3d-quarter, fe-3d-full)");
+  b = al_on_al(600.0, "fe");
+  b["heat_conduction"] = true;
+  const Scene scene = read_scene(impact(b)).scene;
+  ASSERT_EQ(scene.bodies.size(), 2u);
+  for (const BodySpec& body : scene.bodies) {
+    EXPECT_TRUE(body.switches.heat_conduction) << body.name;
+    EXPECT_EQ(body.material.thermal.conductivity, 237.0) << body.name;  // al-thesis
+  }
+  b.erase("heat_conduction");
+  for (const BodySpec& body : read_scene(impact(b)).scene.bodies)
+    EXPECT_FALSE(body.switches.heat_conduction) << body.name;
+}
+
 }  // namespace
 }  // namespace splat

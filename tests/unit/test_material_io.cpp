@@ -304,6 +304,13 @@ TEST(material_checks, schema_and_semantic_faults_are_reported_together) {
   EXPECT_EQ(rejection(doc), (Violations{{"/strength/T_melt", "must be > 0 (K)"}}));
 }
 
+TEST(material_checks, conductivity_outside_what_metals_have_is_refused) {
+  const json doc = with(material_document("al-thesis"), "/thermal/conductivity", 0.237);
+  EXPECT_EQ(rejection(doc),
+            (Violations{{"/thermal/conductivity",
+                         "0.237 W/(m K) is outside what metals have (1 to 1000 W/(m K))"}}));
+}
+
 TEST(material_lookup, unknown_name_lists_the_library) {
   try {
     load_material("unobtainium");
