@@ -116,6 +116,7 @@ ImpactRun::ImpactRun(const ImpactSpec& spec, const Model& model, double max_time
     const Material& material =
         ref.sph ? model.sph_bodies[ref.index].material : model.bodies[ref.index].material;
     settings_.hold_time = k_hold_transits * radius_ / p_wave_speed(material);
+    guard_interval_ = radius_ / p_wave_speed(material);
     settings_.radius = radius_;
   }
   monitor_ = ImpactMonitor(settings_);
@@ -219,8 +220,30 @@ double ImpactRun::bonded_height(const Model& model) const {
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
+namespace {
+
+// Whether scene body `b` (-1: none) has lost an element or particle:
+// erosion bares nodes that lay inside the body, and one the other body's
+// surface had passed, legitimately, until its element went.
+bool eroded(const Model& model, int b) {
+  if (b < 0) return false;
+  const BodyRef& ref = model.body_refs[static_cast<std::size_t>(b)];
+  const std::vector<std::uint8_t>& active =
+      ref.sph ? model.sph_bodies[ref.index].active : model.bodies[ref.index].active;
+  return std::find(active.begin(), active.end(), std::uint8_t{0}) != active.end();
+}
+
+}  // namespace
+
 std::optional<VerdictDecision> ImpactRun::observe(double time, const Model& model) {
   last_ = sample(time, model);
+  if (time >= next_guard_time_ && !eroded(model, particle_) && !eroded(model, substrate_)) {
+    Interpenetration now =
+        measure_interpenetration(model, GuardInput{particle_, substrate_, contact_, energy_limit_});
+    now.time = time;
+    worst_ = worse(worst_, now);
+    next_guard_time_ = time + guard_interval_;
+  }
   if (initial_kinetic_ < 0.0) {
     const double scale = model.axisymmetric ? 2.0 * std::numbers::pi : 1.0;
     initial_kinetic_ = motion(model, particle_).kinetic * scale;
@@ -321,7 +344,7 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
   std::string guard_reason;
   const std::optional<StopReason> failed =
       check_physics(model, s.energy, GuardInput{particle_, substrate_, contact_, energy_limit_},
-                    r.guard, guard_reason);
+                    r.guard, guard_reason, worst_);
   r.bond_energy = now.bond_energy;
   r.separating_kinetic = now.kinetic_leaving;
   // Above the scene's max_eroded_fraction the remaining body no longer

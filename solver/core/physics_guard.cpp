@@ -328,10 +328,16 @@ Interpenetration measure_interpenetration(const Model& model, const GuardInput& 
   return out;
 }
 
+Interpenetration worse(const Interpenetration& a, const Interpenetration& b) {
+  if (a.nodes_through != b.nodes_through) return a.nodes_through > b.nodes_through ? a : b;
+  return b.max_ratio > a.max_ratio ? b : a;
+}
+
 std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& energy,
                                         const GuardInput& in, GuardFigures& figures,
-                                        std::string& reason) {
-  const Interpenetration p = measure_interpenetration(model, in);
+                                        std::string& reason, const Interpenetration& during) {
+  Interpenetration p = worse(measure_interpenetration(model, in), during);
+  p.checked = p.checked || during.checked;
   figures.interpenetration_checked = p.checked;
   figures.max_interpenetration = p.max_depth;
   figures.interpenetration_ratio = p.max_ratio;
@@ -354,6 +360,10 @@ std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& 
     std::snprintf(buf, sizeof buf, format, p.nodes_through, k_interpenetration_limit, p.max_depth,
                   p.max_ratio);
     reason = buf;
+    if (p.time >= 0.0) {
+      std::snprintf(buf, sizeof buf, " (at t = %.4g s)", p.time);
+      reason += buf;
+    }
     return figures.failed = StopReason::interpenetration;
   }
   if (energy.eroded < -in.energy_limit * reference) {

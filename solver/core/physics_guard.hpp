@@ -71,12 +71,6 @@ struct GuardInput {
   double energy_limit = 0.0;  // the scene's energy_balance_limit, -
 };
 
-// Checks `model` and `energy`; fills `figures` (always) and returns the first
-// failed check (none when all pass), with its reason in `reason`.
-std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& energy,
-                                        const GuardInput& in, GuardFigures& figures,
-                                        std::string& reason);
-
 // Deepest live particle node inside a live FE substrate element, or deepest
 // pinball overlap on an SPH substrate (above), and how many nodes went
 // through.
@@ -86,7 +80,22 @@ struct Interpenetration {
   double max_depth = 0.0;  // m
   double max_ratio = 0.0;  // depth / element characteristic length (SPH: spacing), -
   long long nodes_through = 0;
+  double time = -1.0;  // s, when it was measured (-1: at the end of the run)
 };
 Interpenetration measure_interpenetration(const Model& model, const GuardInput& in);
+
+// The worse of two measures: more nodes through, else the deeper ratio.
+Interpenetration worse(const Interpenetration& a, const Interpenetration& b);
+
+// Checks `model` and `energy`; fills `figures` (always) and returns the first
+// failed check (none when all pass), with its reason in `reason`. The
+// interpenetration check takes the worse of the end state and `during`, the
+// worst state sampled while the run went on (a particle node that went
+// through the substrate and came back out broke the contact as surely as one
+// still inside).
+std::optional<StopReason> check_physics(const Model& model, const EnergyBudget& energy,
+                                        const GuardInput& in, GuardFigures& figures,
+                                        std::string& reason,
+                                        const Interpenetration& during = Interpenetration{});
 
 }  // namespace splat

@@ -48,13 +48,15 @@ struct KnownFailure {
   const char* guard;  // what stops it (RunSummary::reason contains it)
 };
 
-// zn-sg at 800 m/s: no link activates and the particle is still at rest in
-// its crater at the maximum time (307 ns), moving in at 4.9 m/s: undecided.
-// Before a stick needed the spring-back, a premature stick at 63 ns caught
-// two particle nodes 0.76 element sizes inside the substrate
-// (interpenetration). At 12 and 16 elements across it rebounds
-// (docs/validation.md, "Material library").
-constexpr KnownFailure known_failures[] = {{"zn-sg", 800.0, "undecided"}};
+// zn-sg and ag-sg at 800 m/s: while the particle penetrates, one particle
+// node goes 0.66 (Zn, at 22 ns) and 0.88 (Ag, at 30 ns) element sizes
+// through the substrate's surface before contact pushes it back; the guard
+// samples the run and withholds the verdict (interpenetration). Zn then
+// rests in its crater, undecided at the maximum time; Ag rebounds. At 12
+// and 16 elements across zn-sg rebounds (docs/validation.md, "Material
+// library").
+constexpr KnownFailure known_failures[] = {{"zn-sg", 800.0, "interpenetration"},
+                                           {"ag-sg", 800.0, "interpenetration"}};
 
 const KnownFailure* known_failure(const std::string& material, double v) {
   for (const KnownFailure& f : known_failures)

@@ -97,6 +97,26 @@ TEST(PhysicsGuardSph, check_physics_names_the_failure) {
   EXPECT_NE(reason.find("SPH substrate"), std::string::npos) << reason;
 }
 
+// A particle that went through the substrate while the run went on and came
+// back out broke the contact as surely as one still inside: the worst state
+// sampled during the run fails the check on a clean end state, and the
+// reason says when.
+TEST(PhysicsGuardSph, an_interpenetration_seen_during_the_run_fails_a_clean_end_state) {
+  Model m = quarter_sph_model();
+  move_particle(m, Vec3(0, 0, -0.8 * d));
+  Interpenetration during = measure_interpenetration(m, k_in);
+  during.time = 3.5e-8;
+  move_particle(m, Vec3(0, 0, 0.8 * d));
+  GuardFigures figures;
+  std::string reason;
+  EXPECT_FALSE(check_physics(m, EnergyBudget{}, k_in, figures, reason).has_value()) << reason;
+  const auto failed = check_physics(m, EnergyBudget{}, k_in, figures, reason, during);
+  ASSERT_TRUE(failed.has_value());
+  EXPECT_EQ(*failed, StopReason::interpenetration);
+  EXPECT_EQ(figures.nodes_through, during.nodes_through);
+  EXPECT_NE(reason.find("(at t = 3.5e-08 s)"), std::string::npos) << reason;
+}
+
 // The plastic work is part of the internal energy: a run whose strength law
 // booked more plastic work than the internal (plus eroded) energy by more
 // than the energy limit fails, one within it passes.
