@@ -147,6 +147,38 @@ std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, doubl
   return out;
 }
 
+// Probes for a stick island the coarse level could not see on the rebound
+// side of a closed coarse edge [lo, hi] (`below`: the verdict on its low
+// side): the coarse velocities nearest to 2, 4, 8, 16, ... times `unit` (m/s)
+// beyond the bracket on that side, up to the next coarse stick (another
+// interval's territory), those the fine level has not run. A refined mesh
+// can stick well below a coarse edge with rebounds in between (FE Al/Al, 16
+// across: sticks at 775 and 800 m/s, rebounds at 825-900, under an 8-across
+// edge at 884 m/s): following the edge from the bracket stops at the first
+// rebound.
+std::vector<double> island_probes(const SeedContext& c, double lo, double hi, Verdict below,
+                                  const std::vector<Classified>& coarse, double unit) {
+  const bool down = below == Verdict::rebound;  // the rebound side is below a lower edge
+  std::vector<double> side;                     // coarse velocities beyond, nearest first
+  for (std::size_t i = 0; i < coarse.size(); ++i) {
+    const Classified& s = coarse[down ? coarse.size() - 1 - i : i];
+    if (down ? s.velocity >= lo : s.velocity <= hi) continue;
+    if (s.verdict == Verdict::stick) break;
+    side.push_back(s.velocity);
+  }
+  std::set<double> out;
+  const double end = down ? lo : hi;
+  for (double reach = 2.0 * unit; !side.empty() && unit > 0.0; reach *= 2.0) {
+    const double target = down ? end - reach : end + reach;
+    const auto nearest = std::min_element(side.begin(), side.end(), [&](double a, double b) {
+      return std::abs(a - target) < std::abs(b - target);
+    });
+    if (!c.run(*nearest)) out.insert(*nearest);
+    if (std::abs(side.back() - end) < reach) break;  // past the farthest candidate
+  }
+  return {out.begin(), out.end()};
+}
+
 }  // namespace
 
 std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::vector<Sample>& fine,
@@ -159,6 +191,12 @@ std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::ve
   for (const Sample& s : fine) c.fine_run.insert(s.velocity);
   c.fine = classified(fine);
   const Window w = compute_window(coarse);
+  const std::vector<Classified> coarse_classified = classified(coarse);
+  // Half the coarse level's widest gap (its grid step), at least the band.
+  double probe_unit = guard_band;
+  for (std::size_t i = 1; i < c.coarse.size(); ++i) {
+    probe_unit = std::max(probe_unit, 0.5 * (c.coarse[i] - c.coarse[i - 1]));
+  }
   std::set<double> out;
   auto add = [&](const std::vector<double>& v) { out.insert(v.begin(), v.end()); };
   auto add_end = [&](double v) {
@@ -177,7 +215,9 @@ std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::ve
         continue;
       }
       const double a = *edge->rebound_velocity, b = edge->stick_velocity;
-      add(edge_seeds(c, std::min(a, b), std::max(a, b), guard_band, below));
+      const double lo = std::min(a, b), hi = std::max(a, b);
+      const std::vector<double> walk = edge_seeds(c, lo, hi, guard_band, below);
+      add(walk.empty() ? island_probes(c, lo, hi, below, coarse_classified, probe_unit) : walk);
     }
   }
   // The fine level's own open edges (a stick at its outermost sample on

@@ -96,14 +96,17 @@ Window compute_window(std::vector<Sample> samples) {
 
 namespace {
 
-// Midpoints of the gaps wider than `tolerance` between consecutive sampled
-// velocities that reach into (lo - band, hi + band).
+// Midpoints of the parts inside (lo - band, hi + band) of the gaps between
+// consecutive sampled velocities, where such a part is wider than
+// `tolerance`.
 void guard_band_points(const Window& w, double lo, double hi, double band, double tolerance,
                        std::vector<double>& out) {
   const std::vector<double>& v = w.sampled;
   for (std::size_t i = 0; i + 1 < v.size(); ++i) {
-    const bool inside = v[i] < hi + band && v[i + 1] > lo - band;
-    if (inside && v[i + 1] - v[i] > tolerance) out.push_back(0.5 * (v[i] + v[i + 1]));
+    // The part of the gap inside the band: a long gap that only reaches into
+    // the band is split there, not at its far-away midpoint.
+    const double a = std::max(v[i], lo - band), b = std::min(v[i + 1], hi + band);
+    if (b - a > tolerance) out.push_back(0.5 * (a + b));
   }
 }
 
