@@ -55,14 +55,38 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "solver/material/material.hpp"
 #include "solver/scene/fidelity.hpp"
 
 namespace splat {
 
+// What a particle_impact block asks for, read once; SI units.
+struct ImpactRequest {
+  nlohmann::json block;      // the particle_impact block as given
+  nlohmann::json substrate;  // its substrate block, {} when absent
+  nlohmann::json adhesion;   // its adhesion block, {} when absent
+  Material particle_material;
+  Material substrate_material;  // the particle's when the substrate names none
+  double radius = 0.0;          // m
+  double velocity = 0.0;        // m/s
+  double angle = 0.0;           // degrees from the normal
+  bool has_adhesion = false;
+  bool damage = false;   // damage in both bodies (asked, or needed by erosion,
+                         // D_adh_max or a yield-drop activation)
+  bool erosion = false;  // elements at the damage cap are eroded
+  std::string fidelity = "auto";
+  std::string substrate_type = "auto";  // auto, deformable, rigid
+  std::string particle_discretization = "auto";
+  std::string substrate_discretization = "auto";
+  double particle_flow_stress = 0.0;  // Pa, at eps_p = 1, 1e7 /s, T_ref
+};
+
 struct ImpactModelChoice {
   Fidelity model = Fidelity::fe_axisym;  // the model chosen, asked or auto
   bool rigid_substrate = false;
-  std::string why;  // for people: what was chosen and the reason
+  int elements_across = 0;    // FE elements (or SPH spacings, when no spacing is given) across R
+  double element_size = 0.0;  // m: R / elements_across, or the SPH spacing
+  std::string why;            // for people: what was chosen and the reason
 };
 
 struct ExpandedImpact {
@@ -76,6 +100,17 @@ struct ExpandedImpact {
 // the working folder). Throws InputError naming the field when the block
 // cannot be expanded (unknown material, adhesion asked on a rigid
 // substrate, ...).
+// Reads the block of `doc` (materials resolved as a body's, files relative to
+// `base_dir`). Throws InputError naming the field of a material that cannot
+// be read.
+ImpactRequest read_impact_request(const nlohmann::json& doc,
+                                  const std::filesystem::path& base_dir = {});
+
+// The model for a request by the rules above (fidelity, discretizations,
+// resolution, rigid or deformable substrate) and why. Throws InputError
+// naming the field when the request contradicts itself.
+ImpactModelChoice choose_model(const ImpactRequest& request);
+
 ExpandedImpact expand_particle_impact(const nlohmann::json& doc,
                                       const std::filesystem::path& base_dir = {});
 
