@@ -219,72 +219,161 @@ Vec3 to_internal_frame(const Model& model, const Vec3& v) {
   return model.axisymmetric ? Vec3(v.x(), v.z(), 0.0) : v;
 }
 
-Model build_model(const Scene& scene) {
-  Model model;
-  if (scene.bodies.empty()) fail("/bodies", "at least one body is required");
-  model.axisymmetric = scene.bodies.front().discretization == Discretization::fe_axisym;
+namespace {
 
-  std::vector<std::vector<std::array<int, 4>>> body_faces;  // global ids
-  std::vector<std::vector<std::uint32_t>> body_face_tags;
-  std::vector<int> face_counts;
+// The boundary faces of every body (global node ids; empty for SPH bodies),
+// with their boundary tags and nodes per face (2 axisymmetric, 4 hex).
+struct BodyFaces {
+  std::vector<std::vector<std::array<int, 4>>> faces;
+  std::vector<std::vector<std::uint32_t>> tags;
+  std::vector<int> counts;
+};
+
+// Appends the FE body of scene body `bi` to the model and its faces to `out`.
+// make_fe_body takes the velocity in scene coordinates (axisymmetric: the z
+// component moves along the axis).
+void add_fe_body(const Scene& scene, std::size_t bi, Model& model, BodyFaces& out) {
+  const BodySpec& b = scene.bodies[bi];
+  model.body_refs.push_back({false, model.bodies.size()});
+  const std::size_t first_node = model.nodes.size();
+  const int offset = static_cast<int>(first_node);
+  BodyMeshInfo info;
+  std::vector<std::array<int, 4>> faces;
+  std::vector<std::uint32_t> tags;
+  if (b.discretization == Discretization::fe_axisym) {
+    const AxisymMesh mesh = axisym_mesh(b, bi);
+    model.bodies.push_back(make_fe_body(b.name, mesh, b.material, b.switches, settings_of(b),
+                                        b.velocity, b.temperature, b.seed, model.nodes));
+    for (const auto& q : mesh.quads)
+      info.connectivity.insert(info.connectivity.end(), q.begin(), q.end());
+    for (std::size_t k = 0; k < mesh.boundary_segments.size(); ++k) {
+      const auto& sgm = mesh.boundary_segments[k];
+      faces.push_back({offset + sgm[0], offset + sgm[1], 0, 0});
+      tags.push_back(mesh.segment_boundary[k]);
+    }
+    out.counts.push_back(2);
+  } else {
+    const HexMesh mesh = hex_mesh(b, bi);
+    model.bodies.push_back(make_fe_body(b.name, mesh, b.material, b.switches, settings_of(b),
+                                        b.velocity, b.temperature, b.seed, model.nodes));
+    for (const auto& h : mesh.hexes)
+      info.connectivity.insert(info.connectivity.end(), h.begin(), h.end());
+    for (std::size_t k = 0; k < mesh.boundary_faces.size(); ++k) {
+      std::array<int, 4> f = mesh.boundary_faces[k];
+      for (int& id : f) id += offset;
+      faces.push_back(f);
+      tags.push_back(mesh.face_boundary[k]);
+    }
+    out.counts.push_back(4);
+    add_spin(model.nodes, first_node, b.angular_velocity);
+  }
+  model.meshes.push_back(std::move(info));
+  out.faces.push_back(std::move(faces));
+  out.tags.push_back(std::move(tags));
+}
+
+BodyFaces add_bodies(const Scene& scene, Model& model) {
+  BodyFaces out;
   for (std::size_t bi = 0; bi < scene.bodies.size(); ++bi) {
     const BodySpec& b = scene.bodies[bi];
-    const bool axi = b.discretization == Discretization::fe_axisym;
-    if (axi != model.axisymmetric) {
+    if ((b.discretization == Discretization::fe_axisym) != model.axisymmetric) {
       fail(body_pointer(bi) + "/discretization/type",
            "all bodies of a scene must be axisymmetric, or all 3D");
     }
-    if (b.discretization == Discretization::sph) {
-      const std::size_t first = model.nodes.size();
-      model.body_refs.push_back({true, model.sph_bodies.size()});
-      model.sph_bodies.push_back(build_sph_body(scene, bi, model.nodes));
-      add_spin(model.nodes, first, b.angular_velocity);
-      body_faces.emplace_back();
-      body_face_tags.emplace_back();
-      face_counts.push_back(0);
+    if (b.discretization != Discretization::sph) {
+      add_fe_body(scene, bi, model, out);
       continue;
     }
-    model.body_refs.push_back({false, model.bodies.size()});
-    // make_fe_body takes the velocity in scene coordinates (axisymmetric: the
-    // z component moves along the axis).
-    const Vec3& velocity = b.velocity;
-    const std::size_t first_node = model.nodes.size();
-    BodyMeshInfo info;
-    std::vector<std::array<int, 4>> faces;
-    std::vector<std::uint32_t> tags;
-    if (axi) {
-      const AxisymMesh mesh = axisym_mesh(b, bi);
-      model.bodies.push_back(make_fe_body(b.name, mesh, b.material, b.switches, settings_of(b),
-                                          velocity, b.temperature, b.seed, model.nodes));
-      for (const auto& q : mesh.quads)
-        info.connectivity.insert(info.connectivity.end(), q.begin(), q.end());
-      for (std::size_t k = 0; k < mesh.boundary_segments.size(); ++k) {
-        const auto& sgm = mesh.boundary_segments[k];
-        faces.push_back(
-            {static_cast<int>(first_node) + sgm[0], static_cast<int>(first_node) + sgm[1], 0, 0});
-        tags.push_back(mesh.segment_boundary[k]);
-      }
-      face_counts.push_back(2);
-    } else {
-      const HexMesh mesh = hex_mesh(b, bi);
-      model.bodies.push_back(make_fe_body(b.name, mesh, b.material, b.switches, settings_of(b),
-                                          velocity, b.temperature, b.seed, model.nodes));
-      for (const auto& h : mesh.hexes)
-        info.connectivity.insert(info.connectivity.end(), h.begin(), h.end());
-      for (std::size_t k = 0; k < mesh.boundary_faces.size(); ++k) {
-        std::array<int, 4> f = mesh.boundary_faces[k];
-        for (int& id : f) id += static_cast<int>(first_node);
-        faces.push_back(f);
-        tags.push_back(mesh.face_boundary[k]);
-      }
-      face_counts.push_back(4);
-      add_spin(model.nodes, first_node, b.angular_velocity);
-    }
-    model.meshes.push_back(std::move(info));
-    body_faces.push_back(std::move(faces));
-    body_face_tags.push_back(std::move(tags));
+    const std::size_t first = model.nodes.size();
+    model.body_refs.push_back({true, model.sph_bodies.size()});
+    model.sph_bodies.push_back(build_sph_body(scene, bi, model.nodes));
+    add_spin(model.nodes, first, b.angular_velocity);
+    out.faces.emplace_back();
+    out.tags.emplace_back();
+    out.counts.push_back(0);
   }
+  return out;
+}
 
+std::size_t body_index(const Scene& scene, const std::string& name, const std::string& pointer) {
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (scene.bodies[b].name == name) return b;
+  }
+  fail(pointer, "no body named '" + name + "'");
+}
+
+// Absorbing faces (Lysmer-Kuhlemeyer dashpots rho c_p, rho c_s) on the
+// faces of FE body `bi` tagged `on`.
+void add_absorbing_faces(Model& model, std::size_t bi, std::uint32_t on, const BodyFaces& bf) {
+  const FeBody& body = model.bodies[model.body_refs[bi].index];
+  const Material& m = body.material;
+  const double rho_cp = m.density * body.constants.wave_speed;
+  const double rho_cs = std::sqrt(m.density * body.constants.G);
+  for (std::size_t k = 0; k < bf.faces[bi].size(); ++k) {
+    if (!(bf.tags[bi][k] & on)) continue;
+    AbsorbingFace f;
+    f.nodes = bf.faces[bi][k];
+    f.count = bf.counts[bi];
+    f.rho_cp = rho_cp;
+    f.rho_cs = rho_cs;
+    model.absorbing.push_back(f);
+  }
+}
+
+// The velocity components (bit c: internal component c) a fixed, velocity or
+// symmetry condition prescribes, and their value.
+struct Prescribed {
+  std::uint8_t mask = 0;
+  Vec3 value = Vec3::Zero();
+};
+
+Prescribed prescribed(const Model& model, const BoundarySpec& bc, const std::string& ptr) {
+  Prescribed p;
+  switch (bc.type) {
+    case BoundaryType::fixed:
+      p.mask = model.axisymmetric ? 0b011 : 0b111;
+      break;
+    case BoundaryType::velocity:
+      // User components x, y, z; axisymmetric x (radial) -> 0, z -> 1.
+      for (int c = 0; c < 3; ++c) {
+        if (!bc.components[static_cast<std::size_t>(c)]) continue;
+        if (model.axisymmetric && c == 1) continue;
+        p.mask |= static_cast<std::uint8_t>(1u << (model.axisymmetric && c == 2 ? 1 : c));
+      }
+      p.value = to_internal_frame(model, bc.velocity);
+      break;
+    case BoundaryType::symmetry: {
+      const int c = symmetry_component(bc.on);
+      if (c < 0) fail(ptr + "/on", "a symmetry condition needs a plane (x_min ... z_max)");
+      p.mask = static_cast<std::uint8_t>(1u << c);
+      break;
+    }
+    case BoundaryType::absorbing:
+      break;
+  }
+  return p;
+}
+
+void add_constraint(Model& model, const BoundarySpec& bc, const std::string& ptr,
+                    std::vector<int> set) {
+  const Prescribed p = prescribed(model, bc, ptr);
+  for (const int i : set) {
+    const auto k = static_cast<std::size_t>(i);
+    model.constraint_mask[k] |= p.mask;
+    for (int c = 0; c < 3; ++c) {
+      if (p.mask & (1u << c)) model.constraint_value[k][c] = p.value[c];
+    }
+  }
+  if (!bc.history) return;
+  DrivenSet driven;
+  driven.nodes = std::move(set);
+  driven.mask = p.mask;
+  driven.history = *bc.history;
+  for (Vec3& v : driven.history.velocity) v = to_internal_frame(model, v);
+  model.driven.push_back(std::move(driven));
+}
+
+void add_boundary_conditions(const Scene& scene, Model& model, const BodyFaces& bf) {
   const std::size_t n = model.nodes.size();
   model.constraint_mask.assign(n, 0);
   model.constraint_value.assign(n, Vec3::Zero());
@@ -294,203 +383,172 @@ Model build_model(const Scene& scene) {
       if (model.nodes.boundary[i] & boundary_x_min) model.constraint_mask[i] |= 1u;
     }
   }
-
-  auto body_index = [&](const std::string& name, const std::string& pointer) {
-    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-      if (scene.bodies[b].name == name) return b;
-    }
-    fail(pointer, "no body named '" + name + "'");
-  };
-
   for (std::size_t ci = 0; ci < scene.boundaries.size(); ++ci) {
     const BoundarySpec& bc = scene.boundaries[ci];
     const std::string ptr = "/boundary_conditions/" + std::to_string(ci);
-    const std::size_t bi = body_index(bc.body, ptr + "/body");
+    const std::size_t bi = body_index(scene, bc.body, ptr + "/body");
     const BodyRef ref = model.body_refs[bi];
-    const std::size_t node_begin = body_node_begin(model, bi);
-    const std::size_t node_end = body_node_end(model, bi);
     std::vector<int> set;  // the condition's nodes
-    for (std::size_t i = node_begin; i < node_end; ++i) {
+    for (std::size_t i = body_node_begin(model, bi); i < body_node_end(model, bi); ++i) {
       if (model.nodes.boundary[i] & bc.on) set.push_back(static_cast<int>(i));
     }
     if (!bc.name.empty()) add_reaction_set(model, bc.name, set);
-    if (ref.sph) {
-      const SphBody& sb = model.sph_bodies[ref.index];
-      if (bc.type == BoundaryType::absorbing) {
-        model.sph_absorbing.push_back(
-            build_sph_absorbing(scene.bodies[bi], sb, model.nodes, bc.on));
-        continue;
-      }
+    if (ref.sph && bc.type == BoundaryType::absorbing) {
+      model.sph_absorbing.push_back(
+          build_sph_absorbing(scene.bodies[bi], model.sph_bodies[ref.index], model.nodes, bc.on));
+    } else if (ref.sph && bc.type == BoundaryType::symmetry) {
       // Symmetry planes are mirrored ghosts (sph_symmetry_planes): no constraint.
-      if (bc.type == BoundaryType::symmetry) continue;
-    }
-    if (bc.type == BoundaryType::absorbing) {
-      const FeBody& body = model.bodies[ref.index];
-      const Material& m = body.material;
-      const double rho_cp = m.density * body.constants.wave_speed;
-      const double rho_cs = std::sqrt(m.density * body.constants.G);
-      for (std::size_t k = 0; k < body_faces[bi].size(); ++k) {
-        if (!(body_face_tags[bi][k] & bc.on)) continue;
-        AbsorbingFace f;
-        f.nodes = body_faces[bi][k];
-        f.count = face_counts[bi];
-        f.rho_cp = rho_cp;
-        f.rho_cs = rho_cs;
-        model.absorbing.push_back(f);
-      }
-      continue;
-    }
-    std::uint8_t mask = 0;
-    Vec3 value = Vec3::Zero();
-    const std::uint8_t all = model.axisymmetric ? 0b011 : 0b111;
-    switch (bc.type) {
-      case BoundaryType::fixed:
-        mask = all;
-        break;
-      case BoundaryType::velocity:
-        // User components x, y, z; axisymmetric x (radial) -> 0, z -> 1.
-        for (int c = 0; c < 3; ++c) {
-          if (!bc.components[static_cast<std::size_t>(c)]) continue;
-          if (model.axisymmetric && c == 1) continue;
-          mask |= static_cast<std::uint8_t>(1u << (model.axisymmetric && c == 2 ? 1 : c));
-        }
-        value = to_internal_frame(model, bc.velocity);
-        break;
-      case BoundaryType::symmetry: {
-        const int c = symmetry_component(bc.on);
-        if (c < 0) fail(ptr + "/on", "a symmetry condition needs a plane (x_min ... z_max)");
-        mask = static_cast<std::uint8_t>(1u << c);
-        break;
-      }
-      case BoundaryType::absorbing:
-        break;
-    }
-    for (const int i : set) {
-      model.constraint_mask[static_cast<std::size_t>(i)] |= mask;
-      for (int c = 0; c < 3; ++c) {
-        if (mask & (1u << c)) model.constraint_value[static_cast<std::size_t>(i)][c] = value[c];
-      }
-    }
-    if (bc.history) {
-      DrivenSet driven;
-      driven.nodes = std::move(set);
-      driven.mask = mask;
-      driven.history = *bc.history;
-      for (Vec3& v : driven.history.velocity) v = to_internal_frame(model, v);
-      model.driven.push_back(std::move(driven));
-    }
-  }
-
-  // Contact surfaces: every boundary face of a body except those on the
-  // symmetry axis (axisymmetric) or on one of its symmetry planes.
-  std::vector<std::uint32_t> excluded(scene.bodies.size(),
-                                      model.axisymmetric ? boundary_x_min : 0u);
-  for (const BoundarySpec& bc : scene.boundaries) {
-    if (bc.type != BoundaryType::symmetry) continue;
-    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-      if (scene.bodies[b].name == bc.body) excluded[b] |= bc.on;
-    }
-  }
-  const DetectionKind kind =
-      model.axisymmetric ? DetectionKind::node_on_segment : DetectionKind::node_on_quad;
-  auto surface_of = [&](std::size_t b) {
-    std::vector<std::array<int, 4>> faces;
-    for (std::size_t k = 0; k < body_faces[b].size(); ++k) {
-      if (!(body_face_tags[b][k] & excluded[b])) faces.push_back(body_faces[b][k]);
-    }
-    return make_contact_surface(kind, std::move(faces));
-  };
-  // SPH bodies: every particle as a pinball of radius half the spacing (the
-  // thesis's "SPH radius": 1.25 um at 2.5 um spacing, 740 particles in a
-  // 12.5 um ball). Not only the initial boundary layers: particles flow, a
-  // crater sweeps the substrate's first layers aside and bares particles
-  // that started deep inside, and the particle's own surface layers thin out
-  // at the jet.
-  auto particle_surface_of = [&](std::size_t b) {
-    const SphBody& body = model.sph_bodies[model.body_refs[b].index];
-    std::vector<int> ids;
-    std::vector<double> radius;
-    for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
-      ids.push_back(static_cast<int>(i));
-      radius.push_back(0.5 * body.spacing);
-    }
-    return make_particle_surface(ids, radius);
-  };
-  auto bulk_modulus_of = [&](std::size_t b) {
-    const BodyRef r = model.body_refs[b];
-    return r.sph ? model.sph_bodies[r.index].constants.K : model.bodies[r.index].constants.K;
-  };
-  for (std::size_t ci = 0; ci < scene.interactions.size(); ++ci) {
-    const InteractionSpec& it = scene.interactions[ci];
-    if (it.type != InteractionType::contact) continue;
-    const std::string ptr = "/interactions/" + std::to_string(ci);
-    const std::size_t mb = body_index(it.master, ptr + "/master");
-    const std::size_t sb = body_index(it.slave, ptr + "/slave");
-    if (mb == sb) fail(ptr + "/slave", "must differ from master");
-    const bool master_sph = model.body_refs[mb].sph, slave_sph = model.body_refs[sb].sph;
-    if (master_sph && !slave_sph) {
-      fail(ptr + "/master",
-           "an sph master needs an sph slave; make the sph body the slave of "
-           "the FE body (SPH particles on FE faces)");
-    }
-    if ((master_sph || slave_sph) && it.two_pass) {
-      fail(ptr + "/two_pass", "two-pass contact is for FE pairs only");
-    }
-    ContactSettings cs;
-    cs.method = it.method;
-    cs.friction = it.friction;
-    cs.solver.kind = it.solver;
-    cs.two_pass = it.two_pass;
-    cs.adhesion = it.adhesion;
-    ContactSurface master = master_sph ? particle_surface_of(mb) : surface_of(mb);
-    if (it.method == ContactMethod::penalty) {
-      cs.penalty_stiffness = it.penalty_stiffness;
-      if (!(cs.penalty_stiffness > 0.0)) {
-        // 0.1 K / h: a tenth of the stiffness of one element layer of the
-        // softer body (the usual explicit-code default, safe for the time step).
-        double h = std::numeric_limits<double>::infinity();
-        for (std::size_t f = 0; f < master.faces.size(); ++f) {
-          h = std::min(h, face_size(master, static_cast<int>(f), model.nodes.x0));
-        }
-        const double K = std::min(bulk_modulus_of(mb), bulk_modulus_of(sb));
-        if (!std::isfinite(h) || !(h > 0.0)) fail(ptr + "/master", "the body has no contact faces");
-        cs.penalty_stiffness = 0.1 * K / h;
-        cs.penalty_mass_scale = 0.1;
-      }
-    }
-    model.contacts.emplace_back(it.master, it.slave, std::move(master),
-                                slave_sph ? particle_surface_of(sb) : surface_of(sb), cs,
-                                model.axisymmetric, n);
-    model.contacts.back().attach_bodies(model.bodies, model.sph_bodies, master_sph,
-                                        model.body_refs[mb].index, slave_sph,
-                                        model.body_refs[sb].index);
-  }
-
-  for (std::size_t wi = 0; wi < scene.interactions.size(); ++wi) {
-    const InteractionSpec& it = scene.interactions[wi];
-    const std::string ptr = "/interactions/" + std::to_string(wi);
-    if (it.type != InteractionType::rigid_wall) continue;
-    RigidWall wall;
-    wall.point = to_internal_frame(model, it.point);
-    wall.normal = to_internal_frame(model, it.normal);
-    if (model.axisymmetric && std::abs(it.normal.x()) + std::abs(it.normal.y()) > 0.0) {
-      fail(ptr + "/normal", "an axisymmetric scene needs a wall normal along z");
-    }
-    wall.normal.normalize();
-    std::vector<std::size_t> targets;
-    if (it.bodies.empty()) {
-      for (std::size_t b = 0; b < scene.bodies.size(); ++b) targets.push_back(b);
+    } else if (bc.type == BoundaryType::absorbing) {
+      add_absorbing_faces(model, bi, bc.on, bf);
     } else {
-      for (std::size_t k = 0; k < it.bodies.size(); ++k) {
-        targets.push_back(body_index(it.bodies[k], ptr + "/bodies/" + std::to_string(k)));
+      add_constraint(model, bc, ptr, std::move(set));
+    }
+  }
+}
+
+// The contact surfaces of the scene's bodies: every boundary face of an FE
+// body except those on the symmetry axis (axisymmetric) or on one of its
+// symmetry planes; every particle of an SPH body as a pinball of radius half
+// the spacing (the thesis's "SPH radius": 1.25 um at 2.5 um spacing, 740
+// particles in a 12.5 um ball). Not only the initial boundary layers:
+// particles flow, a crater sweeps the substrate's first layers aside and
+// bares particles that started deep inside, and the particle's own surface
+// layers thin out at the jet.
+class SurfaceBuilder {
+ public:
+  SurfaceBuilder(const Scene& scene, const Model& model, const BodyFaces& bf)
+      : model_(model), faces_(bf) {
+    excluded_.assign(scene.bodies.size(), model.axisymmetric ? boundary_x_min : 0u);
+    for (const BoundarySpec& bc : scene.boundaries) {
+      if (bc.type != BoundaryType::symmetry) continue;
+      for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+        if (scene.bodies[b].name == bc.body) excluded_[b] |= bc.on;
       }
     }
-    for (std::size_t b : targets) {
-      for (std::size_t i = body_node_begin(model, b); i < body_node_end(model, b); ++i) {
-        wall.nodes.push_back(static_cast<int>(i));
+  }
+
+  ContactSurface operator()(std::size_t b) const {
+    const BodyRef r = model_.body_refs[b];
+    if (r.sph) {
+      const SphBody& body = model_.sph_bodies[r.index];
+      std::vector<int> ids;
+      std::vector<double> radius;
+      for (std::size_t i = body.node_begin; i < body.node_end; ++i) {
+        ids.push_back(static_cast<int>(i));
+        radius.push_back(0.5 * body.spacing);
       }
+      return make_particle_surface(ids, radius);
     }
-    model.walls.push_back(std::move(wall));
+    std::vector<std::array<int, 4>> faces;
+    for (std::size_t k = 0; k < faces_.faces[b].size(); ++k) {
+      if (!(faces_.tags[b][k] & excluded_[b])) faces.push_back(faces_.faces[b][k]);
+    }
+    const DetectionKind kind =
+        model_.axisymmetric ? DetectionKind::node_on_segment : DetectionKind::node_on_quad;
+    return make_contact_surface(kind, std::move(faces));
+  }
+
+ private:
+  const Model& model_;
+  const BodyFaces& faces_;
+  std::vector<std::uint32_t> excluded_;
+};
+
+double bulk_modulus_of(const Model& model, std::size_t b) {
+  const BodyRef r = model.body_refs[b];
+  return r.sph ? model.sph_bodies[r.index].constants.K : model.bodies[r.index].constants.K;
+}
+
+// 0.1 K / h: a tenth of the stiffness of one element layer of the softer
+// body (the usual explicit-code default, safe for the time step).
+double default_penalty_stiffness(const Model& model, const ContactSurface& master, std::size_t mb,
+                                 std::size_t sb, const std::string& ptr) {
+  double h = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < master.faces.size(); ++f) {
+    h = std::min(h, face_size(master, static_cast<int>(f), model.nodes.x0));
+  }
+  const double K = std::min(bulk_modulus_of(model, mb), bulk_modulus_of(model, sb));
+  if (!std::isfinite(h) || !(h > 0.0)) fail(ptr + "/master", "the body has no contact faces");
+  return 0.1 * K / h;
+}
+
+void add_contact(const Scene& scene, std::size_t ci, Model& model, const SurfaceBuilder& surface) {
+  const InteractionSpec& it = scene.interactions[ci];
+  const std::string ptr = "/interactions/" + std::to_string(ci);
+  const std::size_t mb = body_index(scene, it.master, ptr + "/master");
+  const std::size_t sb = body_index(scene, it.slave, ptr + "/slave");
+  if (mb == sb) fail(ptr + "/slave", "must differ from master");
+  const bool master_sph = model.body_refs[mb].sph, slave_sph = model.body_refs[sb].sph;
+  if (master_sph && !slave_sph) {
+    fail(ptr + "/master",
+         "an sph master needs an sph slave; make the sph body the slave of "
+         "the FE body (SPH particles on FE faces)");
+  }
+  if ((master_sph || slave_sph) && it.two_pass) {
+    fail(ptr + "/two_pass", "two-pass contact is for FE pairs only");
+  }
+  ContactSettings cs;
+  cs.method = it.method;
+  cs.friction = it.friction;
+  cs.solver.kind = it.solver;
+  cs.two_pass = it.two_pass;
+  cs.adhesion = it.adhesion;
+  ContactSurface master = surface(mb);
+  if (it.method == ContactMethod::penalty) {
+    cs.penalty_stiffness = it.penalty_stiffness;
+    if (!(cs.penalty_stiffness > 0.0)) {
+      cs.penalty_stiffness = default_penalty_stiffness(model, master, mb, sb, ptr);
+      cs.penalty_mass_scale = 0.1;
+    }
+  }
+  model.contacts.emplace_back(it.master, it.slave, std::move(master), surface(sb), cs,
+                              model.axisymmetric, model.nodes.size());
+  model.contacts.back().attach_bodies(model.bodies, model.sph_bodies, master_sph,
+                                      model.body_refs[mb].index, slave_sph,
+                                      model.body_refs[sb].index);
+}
+
+void add_wall(const Scene& scene, std::size_t wi, Model& model) {
+  const InteractionSpec& it = scene.interactions[wi];
+  const std::string ptr = "/interactions/" + std::to_string(wi);
+  RigidWall wall;
+  wall.point = to_internal_frame(model, it.point);
+  wall.normal = to_internal_frame(model, it.normal);
+  if (model.axisymmetric && std::abs(it.normal.x()) + std::abs(it.normal.y()) > 0.0) {
+    fail(ptr + "/normal", "an axisymmetric scene needs a wall normal along z");
+  }
+  wall.normal.normalize();
+  std::vector<std::size_t> targets;
+  if (it.bodies.empty()) {
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) targets.push_back(b);
+  } else {
+    for (std::size_t k = 0; k < it.bodies.size(); ++k) {
+      targets.push_back(body_index(scene, it.bodies[k], ptr + "/bodies/" + std::to_string(k)));
+    }
+  }
+  for (std::size_t b : targets) {
+    for (std::size_t i = body_node_begin(model, b); i < body_node_end(model, b); ++i) {
+      wall.nodes.push_back(static_cast<int>(i));
+    }
+  }
+  model.walls.push_back(std::move(wall));
+}
+
+}  // namespace
+
+Model build_model(const Scene& scene) {
+  Model model;
+  if (scene.bodies.empty()) fail("/bodies", "at least one body is required");
+  model.axisymmetric = scene.bodies.front().discretization == Discretization::fe_axisym;
+  const BodyFaces faces = add_bodies(scene, model);
+  add_boundary_conditions(scene, model, faces);
+  const SurfaceBuilder surface(scene, model, faces);
+  for (std::size_t ci = 0; ci < scene.interactions.size(); ++ci) {
+    if (scene.interactions[ci].type == InteractionType::contact)
+      add_contact(scene, ci, model, surface);
+  }
+  for (std::size_t wi = 0; wi < scene.interactions.size(); ++wi) {
+    if (scene.interactions[wi].type == InteractionType::rigid_wall) add_wall(scene, wi, model);
   }
   return model;
 }
