@@ -568,13 +568,17 @@ struct Server::Impl {
     }
   }
 
-  void routes() {
-    const std::string p = k_prefix;
+  // Body size, TCP and keep-alive settings of the listener.
+  void connection_settings() {
     http.set_payload_max_length(o.max_body_bytes);
     // Small JSON answers on kept-alive connections: without TCP_NODELAY,
     // Nagle's algorithm and delayed ACKs hold each one back ~40 ms.
     http.set_tcp_nodelay(true);
     http.set_keep_alive_max_count(1000);
+  }
+
+  // Requests that change something need the bearer token, when one is set.
+  void bearer_check() {
     http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       if (o.token.empty()) return httplib::Server::HandlerResponse::Unhandled;
       if (req.method == "GET" || req.method == "HEAD" || req.method == "OPTIONS") {
@@ -594,6 +598,9 @@ struct Server::Impl {
                      json::array()});
       return httplib::Server::HandlerResponse::Handled;
     });
+  }
+
+  void problem_documents() {
     // Statuses the library answers itself (unknown route, body too large, ...)
     // get a problem document too.
     http.set_error_handler(httplib::Server::HandlerWithResponse(
@@ -624,7 +631,10 @@ struct Server::Impl {
         [](const httplib::Request& req, httplib::Response& res, std::exception_ptr) {
           write_problem(req, res, {500, "internal", "Internal Server Error", "", json::array()});
         });
+  }
 
+  // Health, metrics, the material library and the schemas.
+  void service_routes(const std::string& p) {
     get(p + "/health", guarded([this](const httplib::Request& req, httplib::Response& res) {
           const auto running = runner.running();
           reply_json(req, res,
@@ -660,6 +670,10 @@ struct Server::Impl {
           }
           reply_json(req, res, splat::schema_document(name));
         }));
+  }
+
+  // Submitting, listing and cancelling campaigns; their jobs and windows.
+  void campaign_routes(const std::string& p) {
     // Parameters checked in submit, after the media type (a form body would
     // otherwise be read as parameters).
     post(p + "/campaigns",
@@ -735,6 +749,10 @@ struct Server::Impl {
               reply_windows(req, res, store.windows(id), {{"campaign_id", id}});
             },
             {{"format"}}));
+  }
+
+  // Windows across campaigns; one job and its result file.
+  void store_routes(const std::string& p) {
     get(p + "/windows", guarded(
                             [this](const httplib::Request& req, httplib::Response& res) {
                               check_name_filter(req);
@@ -756,7 +774,16 @@ struct Server::Impl {
         guarded([this](const httplib::Request& req, httplib::Response& res) {
           send_result_file(req, res);
         }));
+  }
 
+  void routes() {
+    const std::string p = k_prefix;
+    connection_settings();
+    bearer_check();
+    problem_documents();
+    service_routes(p);
+    campaign_routes(p);
+    store_routes(p);
     refuse_other_methods();
 
     if (!o.web_dir.empty()) http.set_mount_point("/", o.web_dir.string());

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -320,325 +321,378 @@ std::vector<WindowRecord> compute_windows(Store& store, std::int64_t campaign_id
   return out;
 }
 
-SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptions& options) {
-  const ManagerLock one_manager(store.path());
-  const SceneResolver resolve = options.resolver ? options.resolver : splat_scene_resolver();
-  const std::string version =
-      options.solver_version.empty() ? solver_version_string() : options.solver_version;
+namespace {
+
+// One run of run_sweep: the campaign's grid opened in the store, a pool of
+// worker threads (each runs one job child at a time and records its end)
+// fed by the dispatcher (the calling thread), or Slurm rounds, then
+// refinement rounds until the windows are done, cancelled or the host fails.
+class SweepRun {
+ public:
+  SweepRun(Store& store, const CampaignSpec& spec, const ManagerOptions& options)
+      : store_(store),
+        spec_(spec),
+        options_(options),
+        resolve_(options.resolver ? options.resolver : splat_scene_resolver()),
+        version_(options.solver_version.empty() ? solver_version_string() : options.solver_version),
+        jobs_dir_(options.jobs_dir.empty() ? std::filesystem::path(store.path().string() + ".jobs")
+                                           : options.jobs_dir),
+        host_(host_name()),
+        owner_(this_process_owner()),
+        workers_(std::max(1, options.workers)),
+        use_slurm_(options.executor ? *options.executor == ExecutorKind::slurm
+                                    : spec.executor == ExecutorKind::slurm) {
+    if (!use_slurm_ && spec.job.threads > splat::max_threads()) {
+      throw std::invalid_argument(
+          "/job/threads: " + std::to_string(spec.job.threads) + " asked; local jobs take at most " +
+          std::to_string(splat::max_threads()) + ", the cores of this machine");
+    }
+    // More job threads than cores: waiting OpenMP threads must sleep, not
+    // spin, or they take the cores the other jobs compute on (unless the
+    // user's environment already chooses a wait policy).
+    if (workers_ * spec.job.threads > usable_cores() && !std::getenv("OMP_WAIT_POLICY")) {
+      job_environment_ = {"OMP_WAIT_POLICY=passive"};
+    }
+  }
+
+  SweepReport run() {
+    open();
+    start_pool();
+    // A store error in this thread (a full disk) leaves the run through
+    // here: the running jobs are stopped, the claimed ones not started go
+    // back to the queue while the store still takes writes, and the pool is
+    // joined before the error reaches the caller (the campaign stays `active`).
+    const ScopeExit stop_pool_on_error([&] {
+      if (!pool_joined_) stop_pool();
+    });
+    report_progress();
+    const bool cancelled = use_slurm_ ? run_slurm() : run_local();
+    if (cancelled) cancel_claimed();
+    join_pool();
+    return finish(cancelled);
+  }
+
+ private:
   // Resolved at each launch: a splat rebuilt under a running campaign is the
   // one its next jobs run.
-  const auto program = [&] {
-    return options.job_program.empty() ? this_executable() : options.job_program;
-  };
-  const std::filesystem::path jobs_dir =
-      options.jobs_dir.empty() ? std::filesystem::path(store.path().string() + ".jobs")
-                               : options.jobs_dir;
-  const std::string host = host_name();
-  const std::string owner = this_process_owner();
-  const int workers = std::max(1, options.workers);
-  const bool use_slurm = options.executor ? *options.executor == ExecutorKind::slurm
-                                          : spec.executor == ExecutorKind::slurm;
-  if (!use_slurm && spec.job.threads > splat::max_threads()) {
-    throw std::invalid_argument(
-        "/job/threads: " + std::to_string(spec.job.threads) + " asked; local jobs take at most " +
-        std::to_string(splat::max_threads()) + ", the cores of this machine");
+  std::filesystem::path program() const {
+    return options_.job_program.empty() ? this_executable() : options_.job_program;
   }
-  // More job threads than cores: waiting OpenMP threads must sleep, not spin,
-  // or they take the cores the other jobs compute on (unless the user's
-  // environment already chooses a wait policy).
-  const std::vector<std::string> job_environment =
-      workers * spec.job.threads > usable_cores() && !std::getenv("OMP_WAIT_POLICY")
-          ? std::vector<std::string>{"OMP_WAIT_POLICY=passive"}
-          : std::vector<std::string>{};
 
-  SweepReport report;
-  CampaignRecord rec;
-  rec.name = spec.name;
-  rec.spec_hash = spec_hash(spec);
-  rec.spec = spec.document.dump();
-  rec.tags = json(spec.tags).dump();
-  rec.executor = splat::to_string(spec.executor);
-  rec.priority = spec.priority;
-
-  auto to_new_points = [&](const std::vector<ExpandedJob>& jobs, const char* origin) {
+  std::vector<NewPoint> to_new_points(const std::vector<ExpandedJob>& jobs,
+                                      const char* origin) const {
     std::vector<NewPoint> pts;
     for (const ExpandedJob& j : jobs) {
       pts.push_back({{j.params_key, j.params_key, j.velocity, j.hash, origin},
                      canonical_text(j.scene),
-                     version});
+                     version_});
     }
     return pts;
-  };
-  // The campaign and its grid in one transaction.
-  const OpenedCampaign opened = store.open_campaign(
-      rec, to_new_points(expand(spec, resolve, version), "grid"), options.rerun);
-  const std::int64_t cid = opened.id;
-  report.campaign_id = cid;
-  report.grid = opened.points;
-  report.orphans_requeued = store.recover_orphaned_jobs(
-      host, owner, [](const std::string& hash) { return jobs_running_here().contains(hash); });
+  }
 
-  // Worker slots: the dispatcher (this thread) claims jobs and hands them
-  // over; each worker runs one child at a time and records its end.
-  std::mutex m;
-  std::condition_variable cv;
-  std::deque<JobRecord> work;
-  int active = 0;
-  bool closing = false;
-  std::atomic<bool> cancel_running{false};
-  std::atomic<int> started{0};
-  std::vector<std::string> worker_errors;
+  // The campaign and its grid in one transaction; jobs a dead manager of
+  // this host left running go back to the queue.
+  void open() {
+    CampaignRecord rec;
+    rec.name = spec_.name;
+    rec.spec_hash = spec_hash(spec_);
+    rec.spec = spec_.document.dump();
+    rec.tags = json(spec_.tags).dump();
+    rec.executor = splat::to_string(spec_.executor);
+    rec.priority = spec_.priority;
+    const OpenedCampaign opened = store_.open_campaign(
+        rec, to_new_points(expand(spec_, resolve_, version_), "grid"), options_.rerun);
+    cid_ = opened.id;
+    report_.campaign_id = cid_;
+    report_.grid = opened.points;
+    report_.orphans_requeued = store_.recover_orphaned_jobs(
+        host_, owner_, [](const std::string& hash) { return jobs_running_here().contains(hash); });
+    progress_.campaign_id = cid_;
+  }
 
-  auto run_one = [&](const JobRecord& job) {
-    const std::filesystem::path dir = jobs_dir / job.hash;
+  void run_one(const JobRecord& job) {
+    const std::filesystem::path dir = jobs_dir_ / job.hash;
     std::filesystem::create_directories(dir / "out");
     write_file(dir / "scene.json", job.scene + "\n");
     ProcessSpec ps;
     ps.argv = {
-        program().string(),     "run",       (dir / "scene.json").string(),   "--json", "--out",
-        (dir / "out").string(), "--threads", std::to_string(spec.job.threads)};
+        program().string(),     "run",       (dir / "scene.json").string(),    "--json", "--out",
+        (dir / "out").string(), "--threads", std::to_string(spec_.job.threads)};
     ps.stdout_file = dir / "stdout.json";
     ps.stderr_file = dir / "stderr.txt";
-    ps.time_limit = spec.job.time_limit;
-    ps.cancel = &cancel_running;
-    ps.environment = job_environment;
-    ++started;
+    ps.time_limit = spec_.job.time_limit;
+    ps.cancel = &cancel_running_;
+    ps.environment = job_environment_;
+    ++started_;
     const ProcessResult pr = run_process(ps);
     if (pr.end == ProcessEnd::spawn_failed) {
-      wait_while_being_written(find_program(ps.argv[0]), cancel_running);
+      wait_while_being_written(find_program(ps.argv[0]), cancel_running_);
     }
-    JobEnd e = interpret(job, pr, dir, spec.job);
+    JobEnd e = interpret(job, pr, dir, spec_.job);
     if (e.host_fault) {
       // Not the job's fault: it runs again once the host has room, and this
       // run ends (every other job would meet the same full disk).
-      store.requeue_job(job.hash, "requeued: " + e.reason, false);
+      store_.requeue_job(job.hash, "requeued: " + e.reason, false);
       throw HostFault("job " + job.hash.substr(0, 12) + " " + e.reason);
     }
     if (e.retry) {
-      store.requeue_job(job.hash, e.reason);
+      store_.requeue_job(job.hash, e.reason);
     } else {
-      store.finish_job(job.hash, e.state, e.reason, pr.wall_seconds,
-                       e.threads ? e.threads : std::optional<int>(spec.job.threads), e.result);
+      store_.finish_job(job.hash, e.state, e.reason, pr.wall_seconds,
+                        e.threads ? e.threads : std::optional<int>(spec_.job.threads), e.result);
     }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 0; i < workers; ++i) {
-    pool.emplace_back([&] {
-      for (;;) {
-        JobRecord job;
-        {
-          std::unique_lock lock(m);
-          cv.wait(lock, [&] { return closing || !work.empty(); });
-          if (work.empty()) return;
-          job = std::move(work.front());
-          work.pop_front();
-        }
-        try {
-          run_one(job);
-        } catch (const HostFault& ex) {
-          std::lock_guard lock(m);
-          worker_errors.push_back(ex.what());
-        } catch (const std::exception& ex) {
-          // The job could not be prepared or recorded (a full disk, a store
-          // that refuses writes): no fault of the job. It goes back to the
-          // queue if the store still takes writes (else the next run
-          // requeues it), and the run ends with the error; nothing escapes
-          // the worker.
-          try {
-            store.requeue_job(job.hash, std::string("requeued: manager error: ") + ex.what(),
-                              false);
-          } catch (const std::exception&) {
-          }
-          std::lock_guard lock(m);
-          worker_errors.push_back(ex.what());
-        }
-        jobs_running_here().remove(job.hash);
-        {
-          std::lock_guard lock(m);
-          --active;
-        }
-        cv.notify_all();
-      }
-    });
   }
 
-  bool pool_joined = false;
-  auto join_pool = [&] {
-    {
-      std::lock_guard lock(m);
-      closing = true;
+  // Runs `job`; nothing escapes: a fault of the host or the store is kept
+  // for the dispatcher, which ends the run with it.
+  void run_guarded(const JobRecord& job) {
+    try {
+      run_one(job);
+    } catch (const HostFault& ex) {
+      std::lock_guard lock(m_);
+      worker_errors_.push_back(ex.what());
+    } catch (const std::exception& ex) {
+      // The job could not be prepared or recorded (a full disk, a store
+      // that refuses writes): no fault of the job. It goes back to the
+      // queue if the store still takes writes (else the next run requeues
+      // it), and the run ends with the error.
+      try {
+        store_.requeue_job(job.hash, std::string("requeued: manager error: ") + ex.what(), false);
+      } catch (const std::exception&) {
+      }
+      std::lock_guard lock(m_);
+      worker_errors_.push_back(ex.what());
     }
-    cv.notify_all();
-    for (std::thread& t : pool) t.join();
-    pool_joined = true;
-  };
-  // A store error in this thread (a full disk) leaves run_sweep through here:
-  // the running jobs are stopped, the claimed ones not started go back to the
-  // queue while the store still takes writes, and the pool is joined before
-  // the error reaches the caller (the campaign stays `active`).
-  const ScopeExit stop_pool_on_error([&] {
-    if (pool_joined) return;
-    cancel_running = true;
+  }
+
+  void worker() {
+    for (;;) {
+      JobRecord job;
+      {
+        std::unique_lock lock(m_);
+        cv_.wait(lock, [&] { return closing_ || !work_.empty(); });
+        if (work_.empty()) return;
+        job = std::move(work_.front());
+        work_.pop_front();
+      }
+      run_guarded(job);
+      jobs_running_here().remove(job.hash);
+      {
+        std::lock_guard lock(m_);
+        --active_;
+      }
+      cv_.notify_all();
+    }
+  }
+
+  void start_pool() {
+    for (int i = 0; i < workers_; ++i) pool_.emplace_back([this] { worker(); });
+  }
+
+  void join_pool() {
+    {
+      std::lock_guard lock(m_);
+      closing_ = true;
+    }
+    cv_.notify_all();
+    for (std::thread& t : pool_) t.join();
+    pool_joined_ = true;
+  }
+
+  void stop_pool() {
+    cancel_running_ = true;
     std::deque<JobRecord> unstarted;
     {
-      std::lock_guard lock(m);
-      unstarted.swap(work);
+      std::lock_guard lock(m_);
+      unstarted.swap(work_);
     }
     for (const JobRecord& j : unstarted) {
       jobs_running_here().remove(j.hash);
       try {
-        store.requeue_job(j.hash, "requeued: its manager stopped on a store error", false);
+        store_.requeue_job(j.hash, "requeued: its manager stopped on a store error", false);
       } catch (const std::exception&) {
         // Left `running`: the next run (of this process or another) requeues it.
       }
     }
     join_pool();
-  });
+  }
 
-  Progress progress;
-  progress.campaign_id = cid;
-  auto report_progress = [&] {
-    if (!options.on_progress) return;
-    progress.counts = store.job_counts(cid);
-    progress.refinement_jobs = store.refinement_points_count(cid);
-    options.on_progress(progress);
-  };
-  report_progress();
+  void report_progress() {
+    if (!options_.on_progress) return;
+    progress_.counts = store_.job_counts(cid_);
+    progress_.refinement_jobs = store_.refinement_points_count(cid_);
+    options_.on_progress(progress_);
+  }
 
   // After every job has ended: store the windows, then add a refinement
   // round if an edge is still wider than the tolerance and budget is left.
-  auto refine_round = [&] {
-    std::vector<WindowRecord> windows = compute_windows(store, cid);
-    store.store_windows(cid, windows);
-    if (!spec.refinement) return false;
+  bool refine_round() {
+    std::vector<WindowRecord> windows = compute_windows(store_, cid_);
+    store_.store_windows(cid_, windows);
+    if (!spec_.refinement) return false;
     std::vector<ExpandedJob> extra;
-    int budget = spec.refinement->max_extra_jobs - store.refinement_points_count(cid);
+    int budget = spec_.refinement->max_extra_jobs - store_.refinement_points_count(cid_);
     std::map<std::string, std::vector<Sample>> samples;
-    for (const PointStatus& p : store.points(cid))
+    for (const PointStatus& p : store_.points(cid_))
       samples[p.point.params_key].push_back(classify(p));
-    for (const auto& [params, v] : next_points(spec, windows, samples)) {
+    for (const auto& [params, v] : next_points(spec_, windows, samples)) {
       if (budget <= 0) break;
-      extra.push_back(make_job(spec, params, v, resolve, version));
+      extra.push_back(make_job(spec_, params, v, resolve_, version_));
       --budget;
     }
     if (extra.empty()) return false;
-    store.add_points(cid, to_new_points(extra, "refine"), options.rerun);
-    ++progress.round;
+    store_.add_points(cid_, to_new_points(extra, "refine"), options_.rerun);
+    ++progress_.round;
     report_progress();
     return true;
-  };
-  auto cancel_requested = [&] {
-    if (options.interrupt && options.interrupt->load()) return true;
-    const auto c = store.campaign(cid);
-    return c && c->state == CampaignState::cancelling;
-  };
+  }
 
-  bool cancelled = false;
-  if (use_slurm) {
-    SlurmRound round{store, cid, spec, program(), jobs_dir, options.slurm, owner, {}, {}};
-    round.cancel_requested = cancel_requested;
-    round.on_job_end = [&] { report_progress(); };
+  bool cancel_requested() {
+    if (options_.interrupt && options_.interrupt->load()) return true;
+    const auto c = store_.campaign(cid_);
+    return c && c->state == CampaignState::cancelling;
+  }
+
+  // Slurm rounds until done; true when cancelled.
+  bool run_slurm() {
+    SlurmRound round{store_, cid_, spec_, program(), jobs_dir_, options_.slurm, owner_, {}, {}};
+    round.cancel_requested = [this] { return cancel_requested(); };
+    round.on_job_end = [this] { report_progress(); };
     for (;;) {
       round.program = program();
       const SlurmRoundResult rr = run_slurm_round(round);
-      started += rr.jobs_submitted;
-      if (rr.cancelled) {
-        cancelled = true;
-        break;
-      }
-      if (store.job_counts(cid).queued > 0) continue;  // transient failures to retry
-      if (!refine_round()) break;
+      started_ += rr.jobs_submitted;
+      if (rr.cancelled) return true;
+      if (store_.job_counts(cid_).queued > 0) continue;  // transient failures to retry
+      if (!refine_round()) return false;
     }
   }
-  auto last_poll = std::chrono::steady_clock::now();
-  while (!use_slurm) {
-    {
-      // A worker met a fault of the host or the store: end the run with it
-      // (the stop above requeues and joins; the campaign stays `active`).
-      std::lock_guard lock(m);
-      if (!worker_errors.empty()) {
-        throw RunStopped("campaign run stopped: " + worker_errors.front() +
-                         "; jobs stored so far are kept and the campaign stays active: "
-                         "free space (or fix the store) and run it again to resume");
-      }
-    }
-    bool cancel_now = options.interrupt && options.interrupt->load();
-    const auto now = std::chrono::steady_clock::now();
-    if (!cancel_now &&
-        std::chrono::duration<double>(now - last_poll).count() >= options.poll_seconds) {
-      last_poll = now;
-      cancel_now = cancel_requested();
-    }
-    if (cancel_now) {
-      cancelled = true;
-      break;
-    }
-    // Fill free slots.
-    int free_slots = 0;
-    {
-      std::lock_guard lock(m);
-      free_slots = workers - active;
-    }
-    for (; free_slots > 0; --free_slots) {
-      std::optional<JobRecord> job = store.claim_next_job(cid, owner, host);
+
+  int active() {
+    std::lock_guard lock(m_);
+    return active_;
+  }
+
+  // A worker met a fault of the host or the store: end the run with it
+  // (stop_pool requeues and joins; the campaign stays `active`).
+  void throw_worker_error() {
+    std::lock_guard lock(m_);
+    if (worker_errors_.empty()) return;
+    throw RunStopped("campaign run stopped: " + worker_errors_.front() +
+                     "; jobs stored so far are kept and the campaign stays active: "
+                     "free space (or fix the store) and run it again to resume");
+  }
+
+  // Claims queued jobs for the free worker slots.
+  void fill_slots() {
+    for (int free_slots = workers_ - active(); free_slots > 0; --free_slots) {
+      std::optional<JobRecord> job = store_.claim_next_job(cid_, owner_, host_);
       if (!job) break;
       jobs_running_here().add(job->hash);
       {
-        std::lock_guard lock(m);
-        work.push_back(std::move(*job));
-        ++active;
+        std::lock_guard lock(m_);
+        work_.push_back(std::move(*job));
+        ++active_;
       }
-      cv.notify_all();
+      cv_.notify_all();
     }
-    int running_here = 0;
-    {
-      std::lock_guard lock(m);
-      running_here = active;
-    }
-    if (running_here == 0) {
-      const JobCounts counts = store.job_counts(cid);
-      if (counts.queued > 0) continue;  // claimable now
-      if (counts.running > 0) {
-        // Shared jobs another manager is running: wait for them.
-        std::this_thread::sleep_for(std::chrono::duration<double>(options.poll_seconds));
+  }
+
+  // The local pool until done; true when cancelled.
+  bool run_local() {
+    auto last_poll = std::chrono::steady_clock::now();
+    for (;;) {
+      throw_worker_error();
+      bool cancel_now = options_.interrupt && options_.interrupt->load();
+      const auto now = std::chrono::steady_clock::now();
+      if (!cancel_now &&
+          std::chrono::duration<double>(now - last_poll).count() >= options_.poll_seconds) {
+        last_poll = now;
+        cancel_now = cancel_requested();
+      }
+      if (cancel_now) return true;
+      fill_slots();
+      if (active() == 0) {
+        const JobCounts counts = store_.job_counts(cid_);
+        if (counts.queued > 0) continue;  // claimable now
+        if (counts.running > 0) {
+          // Shared jobs another manager is running: wait for them.
+          std::this_thread::sleep_for(std::chrono::duration<double>(options_.poll_seconds));
+          continue;
+        }
+        if (!refine_round()) return false;
         continue;
       }
-      if (!refine_round()) break;
-      continue;
+      {
+        std::unique_lock lock(m_);
+        const int before = active_;
+        cv_.wait_for(lock, std::chrono::duration<double>(options_.poll_seconds),
+                     [&] { return active_ < before; });
+      }
+      report_progress();
     }
-    {
-      std::unique_lock lock(m);
-      const int before = active;
-      cv.wait_for(lock, std::chrono::duration<double>(options.poll_seconds),
-                  [&] { return active < before; });
-    }
-    report_progress();
   }
 
-  if (cancelled) {
-    // Queued jobs never start; running ones are stopped and recorded cancelled.
-    store.cancel_queued_jobs(cid, "campaign cancelled before the job started");
-    cancel_running = true;
-    std::lock_guard lock(m);
-    for (const JobRecord& j : work) {
+  // Queued jobs never start; running ones are stopped and recorded cancelled.
+  void cancel_claimed() {
+    store_.cancel_queued_jobs(cid_, "campaign cancelled before the job started");
+    cancel_running_ = true;
+    std::lock_guard lock(m_);
+    for (const JobRecord& j : work_) {
       jobs_running_here().remove(j.hash);
-      store.finish_job(j.hash, JobState::cancelled, "campaign cancelled before the job started",
-                       std::nullopt, std::nullopt, std::nullopt);
+      store_.finish_job(j.hash, JobState::cancelled, "campaign cancelled before the job started",
+                        std::nullopt, std::nullopt, std::nullopt);
     }
-    active -= static_cast<int>(work.size());
-    work.clear();
+    active_ -= static_cast<int>(work_.size());
+    work_.clear();
   }
-  join_pool();
 
-  report.windows = compute_windows(store, cid);
-  store.store_windows(cid, report.windows);
-  report.state = cancelled ? CampaignState::cancelled : CampaignState::finished;
-  store.set_campaign_state(cid, report.state);
-  report.counts = store.job_counts(cid);
-  report.refinement_jobs = store.refinement_points_count(cid);
-  report.jobs_started = started.load();
-  report_progress();
-  return report;
+  SweepReport finish(bool cancelled) {
+    report_.windows = compute_windows(store_, cid_);
+    store_.store_windows(cid_, report_.windows);
+    report_.state = cancelled ? CampaignState::cancelled : CampaignState::finished;
+    store_.set_campaign_state(cid_, report_.state);
+    report_.counts = store_.job_counts(cid_);
+    report_.refinement_jobs = store_.refinement_points_count(cid_);
+    report_.jobs_started = started_.load();
+    report_progress();
+    return report_;
+  }
+
+  Store& store_;
+  const CampaignSpec& spec_;
+  const ManagerOptions& options_;
+  const SceneResolver resolve_;
+  const std::string version_;
+  const std::filesystem::path jobs_dir_;
+  const std::string host_;
+  const std::string owner_;
+  const int workers_;
+  const bool use_slurm_;
+  std::vector<std::string> job_environment_;
+  std::int64_t cid_ = 0;
+  SweepReport report_;
+  Progress progress_;
+  // The pool, guarded by m_: the claimed jobs not yet started, the jobs
+  // claimed and not ended, and the faults the workers met.
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::deque<JobRecord> work_;
+  int active_ = 0;
+  bool closing_ = false;
+  std::vector<std::string> worker_errors_;
+  std::atomic<bool> cancel_running_{false};
+  std::atomic<int> started_{0};
+  std::vector<std::thread> pool_;
+  bool pool_joined_ = false;
+};
+
+}  // namespace
+
+SweepReport run_sweep(Store& store, const CampaignSpec& spec, const ManagerOptions& options) {
+  const ManagerLock one_manager(store.path());
+  SweepRun run(store, spec, options);
+  return run.run();
 }
 
 }  // namespace splat::campaign

@@ -6,8 +6,11 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "campaign/job_end.hpp"
 #include "campaign/process.hpp"
@@ -77,11 +80,8 @@ bool terminal_task_state(const std::string& s) {
          s != "STAGE_OUT";
 }
 
-}  // namespace
-
-SlurmRoundResult run_slurm_round(SlurmRound& r) {
-  SlurmRoundResult out;
-  const JobOptions& jo = r.spec.job;
+// The jobs this round claims, each with its folder and scene written.
+std::vector<Submitted> claim_jobs(SlurmRound& r) {
   std::vector<Submitted> jobs;
   while (auto j = r.store.claim_next_job(r.campaign_id, r.owner, "slurm")) {
     Submitted s;
@@ -92,74 +92,156 @@ SlurmRoundResult run_slurm_round(SlurmRound& r) {
     s.job = std::move(*j);
     jobs.push_back(std::move(s));
   }
-  if (jobs.empty()) return out;
+  return jobs;
+}
 
-  // Pack: at most max_array_size tasks, `per` jobs in each.
-  const int n = static_cast<int>(jobs.size());
-  const int max_tasks = std::max(1, r.options.max_array_size);
-  const int per = (n + max_tasks - 1) / max_tasks;
-  const int tasks = (n + per - 1) / per;
-  for (int i = 0; i < n; ++i) jobs[static_cast<std::size_t>(i)].task = i / per;
+// Slurm's state of each task of an array (squeue), or `unknown` when Slurm
+// no longer knows the array (every task ended long ago).
+struct TaskStates {
+  std::map<int, std::string> state;
+  bool unknown = false;
+};
 
-  const auto stamp = std::chrono::duration_cast<std::chrono::milliseconds>(
-                         std::chrono::system_clock::now().time_since_epoch())
-                         .count();
-  const fs::path slurm_dir =
-      r.jobs_dir / "slurm" / ("c" + std::to_string(r.campaign_id) + "-" + std::to_string(stamp));
-  fs::create_directories(slurm_dir);
-  const fs::path list = slurm_dir / "jobs.txt";
-  {
-    std::ofstream f(list);
-    for (const Submitted& s : jobs) f << fs::absolute(s.dir).string() << "\n";
+TaskStates query_tasks(const std::string& array_id, const fs::path& scratch) {
+  const Command q = run_command(
+      {"squeue", "--noheader", "--array", "--states=all", "--jobs=" + array_id, "--format=%K %T"},
+      scratch);
+  TaskStates t;
+  if (q.code != 0) {
+    t.unknown = q.err.find("Invalid job id") != std::string::npos;
+    return t;
   }
-  const fs::path script = slurm_dir / "task.sh";
-  std::ofstream(script) << k_task_script;
-  fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                              fs::perms::others_read | fs::perms::others_exec);
-
-  const int minutes =
-      static_cast<int>(std::ceil(per * (jo.time_limit + 2.0) / 60.0)) + 1;  // Slurm's unit
-  std::vector<std::string> argv = {"sbatch",
-                                   "--parsable",
-                                   "--array=0-" + std::to_string(tasks - 1) + "%" +
-                                       std::to_string(std::max(1, r.options.throttle)),
-                                   "--job-name=splat-c" + std::to_string(r.campaign_id),
-                                   "--output=" + (slurm_dir / "%A_%a.out").string(),
-                                   "--time=" + std::to_string(minutes),
-                                   "--cpus-per-task=" + std::to_string(jo.threads),
-                                   "--chdir=" + slurm_dir.string()};
-  for (const std::string& a : r.options.sbatch_args) argv.push_back(a);
-  for (const std::string& a :
-       {script.string(), std::to_string(per), list.string(), fs::absolute(r.program).string(),
-        std::to_string(jo.threads), std::to_string(jo.time_limit)}) {
-    argv.push_back(a);
-  }
-  const Command sub = run_command(argv, slurm_dir);
-  if (sub.code != 0) {
-    for (const Submitted& s : jobs) {
-      r.store.finish_job(s.job.hash, JobState::failed, "sbatch failed: " + sub.err, std::nullopt,
-                         std::nullopt, std::nullopt);
+  std::istringstream lines(q.out);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream w(line);
+    std::string task, state;
+    if (!(w >> task >> state)) continue;
+    try {
+      t.state[std::stoi(task)] = state;
+    } catch (...) {
+      // "0-5%2" style lines of the pending part of the array
     }
-    return out;
   }
-  const std::string array_id = sub.out.substr(0, sub.out.find(';'));
-  out.jobs_submitted = n;
+  return t;
+}
 
-  int remaining = n;
-  auto end_job = [&](Submitted& s, const JobEnd& e, std::optional<double> wall) {
+// The end of a job whose task Slurm ended without an exit_code: Slurm's state.
+JobEnd end_from_task_state(const std::string& state) {
+  JobEnd e;
+  if (state == "TIMEOUT") {
+    e.state = JobState::timed_out;
+    e.reason = "Slurm task ended TIMEOUT before the job finished";
+  } else if (state == "CANCELLED") {
+    e.state = JobState::cancelled;
+    e.reason = "Slurm task was cancelled";
+  } else {
+    e.state = JobState::failed;
+    e.reason = "Slurm task ended " + state + " without running the job to its end";
+  }
+  return e;
+}
+
+// One submitted array: its jobs packed into tasks (at most max_array_size
+// tasks of `per` jobs), the files Slurm runs, and the watch of its jobs.
+class SlurmArray {
+ public:
+  SlurmArray(SlurmRound& r, std::vector<Submitted> jobs) : r_(r), jobs_(std::move(jobs)) {
+    const int n = static_cast<int>(jobs_.size());
+    const int max_tasks = std::max(1, r.options.max_array_size);
+    per_ = (n + max_tasks - 1) / max_tasks;
+    tasks_ = (n + per_ - 1) / per_;
+    for (int i = 0; i < n; ++i) jobs_[static_cast<std::size_t>(i)].task = i / per_;
+    remaining_ = n;
+  }
+
+  // Writes the job list and the task script and calls sbatch; false (every
+  // job recorded failed) when sbatch refuses.
+  bool submit() {
+    const auto stamp = std::chrono::duration_cast<std::chrono::milliseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                           .count();
+    std::string name = "c";  // appended, not "c" + ...: GCC 12 warns falsely on that
+    name += std::to_string(r_.campaign_id) + "-" + std::to_string(stamp);
+    dir_ = r_.jobs_dir / "slurm" / name;
+    fs::create_directories(dir_);
+    const fs::path list = dir_ / "jobs.txt";
+    {
+      std::ofstream f(list);
+      for (const Submitted& s : jobs_) f << fs::absolute(s.dir).string() << "\n";
+    }
+    const fs::path script = dir_ / "task.sh";
+    std::ofstream(script) << k_task_script;
+    fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                fs::perms::others_read | fs::perms::others_exec);
+    const Command sub = run_command(sbatch_argv(script, list), dir_);
+    if (sub.code != 0) {
+      for (const Submitted& s : jobs_) {
+        r_.store.finish_job(s.job.hash, JobState::failed, "sbatch failed: " + sub.err, std::nullopt,
+                            std::nullopt, std::nullopt);
+      }
+      return false;
+    }
+    array_id_ = sub.out.substr(0, sub.out.find(';'));
+    return true;
+  }
+
+  // Polls until every job has ended (false) or a cancel was asked (true:
+  // the array is scancelled and its unfinished jobs recorded cancelled).
+  bool watch() {
+    for (;;) {
+      if (r_.cancel_requested && r_.cancel_requested()) {
+        cancel();
+        return true;
+      }
+      for (Submitted& s : jobs_) {
+        if (!s.done) ingest(s);
+      }
+      if (remaining_ == 0) return false;
+      end_ended_tasks();
+      if (remaining_ == 0) return false;
+      std::this_thread::sleep_for(std::chrono::duration<double>(r_.options.poll_seconds));
+    }
+  }
+
+ private:
+  std::vector<std::string> sbatch_argv(const fs::path& script, const fs::path& list) const {
+    const JobOptions& jo = r_.spec.job;
+    const int minutes =
+        static_cast<int>(std::ceil(per_ * (jo.time_limit + 2.0) / 60.0)) + 1;  // Slurm's unit
+    std::vector<std::string> argv = {"sbatch",
+                                     "--parsable",
+                                     "--array=0-" + std::to_string(tasks_ - 1) + "%" +
+                                         std::to_string(std::max(1, r_.options.throttle)),
+                                     "--job-name=splat-c" + std::to_string(r_.campaign_id),
+                                     "--output=" + (dir_ / "%A_%a.out").string(),
+                                     "--time=" + std::to_string(minutes),
+                                     "--cpus-per-task=" + std::to_string(jo.threads),
+                                     "--chdir=" + dir_.string()};
+    for (const std::string& a : r_.options.sbatch_args) argv.push_back(a);
+    for (const std::string& a :
+         {script.string(), std::to_string(per_), list.string(), fs::absolute(r_.program).string(),
+          std::to_string(jo.threads), std::to_string(jo.time_limit)}) {
+      argv.push_back(a);
+    }
+    return argv;
+  }
+
+  void end_job(Submitted& s, const JobEnd& e, std::optional<double> wall) {
     if (e.retry) {
-      r.store.requeue_job(s.job.hash, e.reason);
+      r_.store.requeue_job(s.job.hash, e.reason);
     } else {
-      r.store.finish_job(s.job.hash, e.state,
-                         e.reason + " (Slurm " + array_id + "_" + std::to_string(s.task) + ")",
-                         wall, e.threads ? e.threads : std::optional<int>(jo.threads), e.result);
+      r_.store.finish_job(s.job.hash, e.state,
+                          e.reason + " (Slurm " + array_id_ + "_" + std::to_string(s.task) + ")",
+                          wall, e.threads ? e.threads : std::optional<int>(r_.spec.job.threads),
+                          e.result);
     }
     s.done = true;
-    --remaining;
-    if (r.on_job_end) r.on_job_end();
-  };
+    --remaining_;
+    if (r_.on_job_end) r_.on_job_end();
+  }
+
   // A job whose exit_code file is there: the same interpretation as local.
-  auto ingest = [&](Submitted& s) {
+  bool ingest(Submitted& s) {
     std::ifstream f(s.dir / "exit_code");
     int code = -1;
     double t0 = 0.0, t1 = 0.0;
@@ -169,71 +251,54 @@ SlurmRoundResult run_slurm_round(SlurmRound& r) {
     pr.exit_code = code;
     if (code == 124 || code == 137) pr.end = ProcessEnd::timed_out;  // from `timeout`
     pr.wall_seconds = t1 - t0;
-    end_job(s, interpret(s.job, pr, s.dir, jo), pr.wall_seconds);
+    end_job(s, interpret(s.job, pr, s.dir, r_.spec.job), pr.wall_seconds);
     return true;
-  };
+  }
 
-  for (;;) {
-    if (r.cancel_requested && r.cancel_requested()) {
-      run_command({"scancel", array_id}, slurm_dir);
-      for (Submitted& s : jobs) {
-        if (s.done || ingest(s)) continue;
-        JobEnd e;
-        e.state = JobState::cancelled;
-        e.reason = "cancelled (scancel of Slurm array " + array_id + ", recorded by the manager)";
-        end_job(s, e, std::nullopt);
-      }
-      out.cancelled = true;
-      return out;
-    }
-    for (Submitted& s : jobs) {
-      if (!s.done) ingest(s);
-    }
-    if (remaining == 0) return out;
-    // Tasks Slurm has ended: their jobs without an exit_code get Slurm's state.
-    const Command q = run_command(
-        {"squeue", "--noheader", "--array", "--states=all", "--jobs=" + array_id, "--format=%K %T"},
-        slurm_dir);
-    std::map<int, std::string> task_state;
-    bool unknown = false;
-    if (q.code == 0) {
-      std::istringstream lines(q.out);
-      for (std::string line; std::getline(lines, line);) {
-        std::istringstream w(line);
-        std::string task, state;
-        if (w >> task >> state) {
-          try {
-            task_state[std::stoi(task)] = state;
-          } catch (...) {
-            // "0-5%2" style lines of the pending part of the array
-          }
-        }
-      }
-    } else {
-      unknown = q.err.find("Invalid job id") != std::string::npos;
-    }
-    for (Submitted& s : jobs) {
-      if (s.done) continue;
-      const auto it = task_state.find(s.task);
-      const bool ended = unknown || (it != task_state.end() && terminal_task_state(it->second));
-      if (!ended || ingest(s)) continue;
-      const std::string state = unknown ? "UNKNOWN" : it->second;
+  void cancel() {
+    run_command({"scancel", array_id_}, dir_);
+    for (Submitted& s : jobs_) {
+      if (s.done || ingest(s)) continue;
       JobEnd e;
-      if (state == "TIMEOUT") {
-        e.state = JobState::timed_out;
-        e.reason = "Slurm task ended TIMEOUT before the job finished";
-      } else if (state == "CANCELLED") {
-        e.state = JobState::cancelled;
-        e.reason = "Slurm task was cancelled";
-      } else {
-        e.state = JobState::failed;
-        e.reason = "Slurm task ended " + state + " without running the job to its end";
-      }
+      e.state = JobState::cancelled;
+      e.reason = "cancelled (scancel of Slurm array " + array_id_ + ", recorded by the manager)";
       end_job(s, e, std::nullopt);
     }
-    if (remaining == 0) return out;
-    std::this_thread::sleep_for(std::chrono::duration<double>(r.options.poll_seconds));
   }
+
+  // Tasks Slurm has ended: their jobs without an exit_code get Slurm's state.
+  void end_ended_tasks() {
+    const TaskStates t = query_tasks(array_id_, dir_);
+    for (Submitted& s : jobs_) {
+      if (s.done) continue;
+      const auto it = t.state.find(s.task);
+      const bool ended = t.unknown || (it != t.state.end() && terminal_task_state(it->second));
+      if (!ended || ingest(s)) continue;
+      end_job(s, end_from_task_state(t.unknown ? "UNKNOWN" : it->second), std::nullopt);
+    }
+  }
+
+  SlurmRound& r_;
+  std::vector<Submitted> jobs_;
+  int per_ = 1;    // jobs per task
+  int tasks_ = 1;  // tasks of the array
+  int remaining_ = 0;
+  fs::path dir_;  // the array's folder: job list, task script, Slurm's output
+  std::string array_id_;
+};
+
+}  // namespace
+
+SlurmRoundResult run_slurm_round(SlurmRound& r) {
+  SlurmRoundResult out;
+  std::vector<Submitted> jobs = claim_jobs(r);
+  if (jobs.empty()) return out;
+  const int n = static_cast<int>(jobs.size());
+  SlurmArray array(r, std::move(jobs));
+  if (!array.submit()) return out;
+  out.jobs_submitted = n;
+  out.cancelled = array.watch();
+  return out;
 }
 
 }  // namespace splat::campaign

@@ -251,150 +251,88 @@ std::optional<VerdictDecision> ImpactRun::observe(double time, const Model& mode
   return monitor_.update(last_);
 }
 
-void ImpactRun::finish(RunSummary& s, const Model& model,
-                       const std::optional<VerdictDecision>& settled) {
-  ImpactSummary r;
-  r.model = spec_.model;
-  r.why = spec_.why;
-  r.adaptive = spec_.adaptive_end;
-  r.hold_time = settings_.hold_time;
-  r.max_time = max_time_;
-  r.impact_velocity = spec_.velocity;
-  const double scale = model.axisymmetric ? 2.0 * std::numbers::pi : 1.0;
-  const ImpactSample now = sample(s.end_time, model);
-  r.rebound_velocity = now.v_normal;
-  r.coefficient_of_restitution =
-      spec_.velocity > 0.0 ? std::max(now.v_normal, 0.0) / spec_.velocity : 0.0;
-  r.initial_kinetic = std::max(initial_kinetic_, 0.0);
-  r.final_particle_kinetic = motion(model, particle_).kinetic * scale;
-
-  // Shape of the particle: lateral radius about its axis and lowest point.
-  if (particle_ >= 0) {
-    const NodeRange body = nodes_of(model, particle_);
-    const NodeSet& n = model.nodes;
-    // Full 3D models (fe-3d-full, sph-3d-full, sph-on-fe-3d-full): lateral
-    // radius about the particle's axis through its centre of mass; quarter
-    // and axisymmetric models: about the z axis.
-    const bool full_3d = !model.axisymmetric && spec_.model && is_full_3d(*spec_.model);
-    double cx = 0.0, cy = 0.0, m = 0.0;
-    if (full_3d) {
-      for (std::size_t i = body.begin; i < body.end; ++i) {
-        cx += n.mass[i] * n.x[i].x();
-        cy += n.mass[i] * n.x[i].y();
-        m += n.mass[i];
-      }
-      if (m > 0.0) cx /= m, cy /= m;
-    }
-    double r_max = 0.0, z_min = std::numeric_limits<double>::infinity();
+void ImpactRun::particle_shape(const Model& model, ImpactSummary& r) const {
+  if (particle_ < 0) return;
+  const NodeRange body = nodes_of(model, particle_);
+  const NodeSet& n = model.nodes;
+  // Full 3D models (fe-3d-full, sph-3d-full, sph-on-fe-3d-full): lateral
+  // radius about the particle's axis through its centre of mass; quarter
+  // and axisymmetric models: about the z axis.
+  const bool full_3d = !model.axisymmetric && spec_.model && is_full_3d(*spec_.model);
+  double cx = 0.0, cy = 0.0, m = 0.0;
+  if (full_3d) {
     for (std::size_t i = body.begin; i < body.end; ++i) {
-      if (n.mass[i] <= 0.0) continue;
-      const double lateral =
-          model.axisymmetric ? n.x[i].x() : std::hypot(n.x[i].x() - cx, n.x[i].y() - cy);
-      r_max = std::max(r_max, lateral);
-      z_min = std::min(z_min, height(model, n.x[i]));
+      cx += n.mass[i] * n.x[i].x();
+      cy += n.mass[i] * n.x[i].y();
+      m += n.mass[i];
     }
-    r.flattening_ratio = radius_ > 0.0 ? (r_max + half_spacing_) / radius_ : 0.0;
-    r.penetration_depth = std::isfinite(z_min) ? std::max(0.0, half_spacing_ - z_min) : 0.0;
+    if (m > 0.0) cx /= m, cy /= m;
   }
-  for (const BodySummary& b : s.bodies) {
-    r.max_temperature = std::max(r.max_temperature, b.max_temperature);
-    r.max_plastic_strain = std::max(r.max_plastic_strain, b.max_plastic_strain);
+  double r_max = 0.0, z_min = std::numeric_limits<double>::infinity();
+  for (std::size_t i = body.begin; i < body.end; ++i) {
+    if (n.mass[i] <= 0.0) continue;
+    const double lateral =
+        model.axisymmetric ? n.x[i].x() : std::hypot(n.x[i].x() - cx, n.x[i].y() - cy);
+    r_max = std::max(r_max, lateral);
+    z_min = std::min(z_min, height(model, n.x[i]));
   }
+  r.flattening_ratio = radius_ > 0.0 ? (r_max + half_spacing_) / radius_ : 0.0;
+  r.penetration_depth = std::isfinite(z_min) ? std::max(0.0, half_spacing_ - z_min) : 0.0;
+}
 
-  if (contact_ >= 0) {
-    const ContactInterface& c = model.contacts[contact_];
-    const ContactStats& st = c.stats();
-    r.links_contact = st.ever_in_contact;
-    r.links_activated = st.links_activated;
-    r.links_exhausted = st.links_exhausted;
-    r.links_eroded = st.links_eroded;
-    r.links_active = st.links_active;
-    r.max_links_active = st.max_links_active;
-    r.bonded_area = st.bonded_area;
-    r.adhesion_dissipated = st.adhesion_work;
-    const std::vector<LinkState>& states = c.link_states();
-    for (std::size_t k = 0; k < states.size(); ++k) {
-      if (states[k] == LinkState::none) continue;
-      r.contact_area += slave_node_area(c.slave_surface(), static_cast<int>(k), model.nodes.x);
-    }
-    r.contact_area *= scale;
-    cohesive_zone(model, r);
-    r.bonded_fraction = r.contact_area > 0.0 ? std::min(r.bonded_area / r.contact_area, 1.0) : 0.0;
-  } else {
+void ImpactRun::interface_figures(const Model& model, const ImpactSample& now,
+                                  ImpactSummary& r) const {
+  if (contact_ < 0) {
     r.links_contact = now.pairs_in_contact;
+    return;
   }
-  r.thesis_active_link = r.links_active > 0;
-  r.thesis_one_percent =
-      r.max_links_active > 0 && static_cast<double>(r.links_active) >
-                                    k_thesis_fraction * static_cast<double>(r.max_links_active);
+  const ContactInterface& c = model.contacts[contact_];
+  const ContactStats& st = c.stats();
+  r.links_contact = st.ever_in_contact;
+  r.links_activated = st.links_activated;
+  r.links_exhausted = st.links_exhausted;
+  r.links_eroded = st.links_eroded;
+  r.links_active = st.links_active;
+  r.max_links_active = st.max_links_active;
+  r.bonded_area = st.bonded_area;
+  r.adhesion_dissipated = st.adhesion_work;
+  const std::vector<LinkState>& states = c.link_states();
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    if (states[k] == LinkState::none) continue;
+    r.contact_area += slave_node_area(c.slave_surface(), static_cast<int>(k), model.nodes.x);
+  }
+  r.contact_area *= model.axisymmetric ? 2.0 * std::numbers::pi : 1.0;
+  cohesive_zone(model, r);
+  r.bonded_fraction = r.contact_area > 0.0 ? std::min(r.bonded_area / r.contact_area, 1.0) : 0.0;
+}
 
-  // Share of the particle's mass eroded (SPH particles are never deleted).
-  double eroded_fraction = 0.0;
-  if (particle_ >= 0 && !model.body_refs[particle_].sph) {
-    const FeBody& body = model.bodies[model.body_refs[particle_].index];
-    double total = 0.0, gone = 0.0;
-    for (std::size_t e = 0; e < body.num_elements(); ++e) {
-      total += body.element_mass[e];
-      if (!body.active[e]) gone += body.element_mass[e];
-    }
-    eroded_fraction = total > 0.0 ? gone / total : 0.0;
+double ImpactRun::eroded_fraction(const Model& model) const {
+  if (particle_ < 0 || model.body_refs[particle_].sph) return 0.0;  // SPH particles stay
+  const FeBody& body = model.bodies[model.body_refs[particle_].index];
+  double total = 0.0, gone = 0.0;
+  for (std::size_t e = 0; e < body.num_elements(); ++e) {
+    total += body.element_mass[e];
+    if (!body.active[e]) gone += body.element_mass[e];
   }
+  return total > 0.0 ? gone / total : 0.0;
+}
 
-  bool own_end = settled.has_value() || s.stop_reason == StopReason::end_time;
-  std::string guard_reason;
-  const std::optional<StopReason> failed =
-      check_physics(model, s.energy, GuardInput{particle_, substrate_, contact_, energy_limit_},
-                    r.guard, guard_reason, worst_);
-  r.bond_energy = now.bond_energy;
-  r.separating_kinetic = now.kinetic_leaving;
-  // Above the scene's max_eroded_fraction the remaining body no longer
-  // represents the particle: the verdict is withheld (outcome unstable).
-  if (own_end && eroded_fraction > spec_.max_eroded_fraction) {
-    own_end = false;
-    s.outcome = RunOutcome::unstable;
-    s.stop_reason = StopReason::erosion_limit;
-    s.reason = format_reason(
-        "no verdict: %.1f %% of the particle's mass was eroded (limit max_eroded_fraction "
-        "%.0f %%): the particle broke up (elements at the damage cap) or its mesh could not "
-        "follow the deformation",
-        100.0 * eroded_fraction, 100.0 * spec_.max_eroded_fraction);
-  } else if (own_end && failed) {
-    own_end = false;
-    s.outcome = RunOutcome::unstable;
-    s.stop_reason = failed;
-    s.reason = "no verdict: " + guard_reason;
-  } else if (!own_end && s.stop_reason == StopReason::energy_balance) {
-    // Say which term broke the balance (all as fractions of the initial energy).
-    const EnergyBudget& e = s.energy;
-    const double E0 = std::max(e.initial_total, 1e-300);
-    s.reason += format_reason(" (contact work %+.3g, eroded %.3g of the initial energy",
-                              e.contact_work / E0, e.eroded / E0);
-    s.reason +=
-        format_reason("; hourglass %.3g, kinetic now %.3g)", e.hourglass / E0, e.kinetic / E0);
-  }
-  const std::optional<VerdictDecision> decision =
-      own_end ? std::optional(settled ? *settled : monitor_.at_end(now)) : std::nullopt;
-  if (decision && decision->verdict == ImpactVerdict::undecided) {
-    s.outcome = RunOutcome::unstable;
-    s.stop_reason = StopReason::undecided;
-    s.reason = "no verdict: " + decision->reason;
-    r.verdict = "none";
-  } else if (decision) {
-    const bool stick = decision->verdict == ImpactVerdict::stick;
-    r.verdict = to_string(decision->verdict);
-    r.settled = decision->settled;
-    s.outcome = stick ? RunOutcome::stick : RunOutcome::rebound;
-    s.reason = decision->reason;
-    if (!spec_.adaptive_end) {
-      s.stop_reason = StopReason::end_time;
-    } else {
-      s.stop_reason = settled ? StopReason::verdict_settled : StopReason::max_time;
-    }
-  } else {
-    r.verdict = "none";
-  }
-  // A run that went unstable may have left non-finite numbers behind: the
-  // figures report zero for those (the outcome says the run is not usable).
+namespace {
+
+// Says which term broke the energy balance (all as fractions of the initial
+// energy).
+void explain_energy_balance(RunSummary& s) {
+  const EnergyBudget& e = s.energy;
+  const double E0 = std::max(e.initial_total, 1e-300);
+  s.reason += format_reason(" (contact work %+.3g, eroded %.3g of the initial energy",
+                            e.contact_work / E0, e.eroded / E0);
+  s.reason +=
+      format_reason("; hourglass %.3g, kinetic now %.3g)", e.hourglass / E0, e.kinetic / E0);
+}
+
+// A run that went unstable may have left non-finite numbers behind: the
+// figures report zero for those (the outcome says the run is not usable).
+void zero_non_finite(ImpactSummary& r) {
   for (double* x : {&r.rebound_velocity,
                     &r.coefficient_of_restitution,
                     &r.bonded_area,
@@ -419,6 +357,92 @@ void ImpactRun::finish(RunSummary& s, const Model& model,
                     &r.guard.plastic_work_excess}) {
     *x = finite_or_zero(*x);
   }
+}
+
+}  // namespace
+
+bool ImpactRun::verdict_allowed(RunSummary& s, const Model& model, bool own_end,
+                                ImpactSummary& r) const {
+  std::string guard_reason;
+  const std::optional<StopReason> failed =
+      check_physics(model, s.energy, GuardInput{particle_, substrate_, contact_, energy_limit_},
+                    r.guard, guard_reason, worst_);
+  const double eroded = eroded_fraction(model);
+  // Above the scene's max_eroded_fraction the remaining body no longer
+  // represents the particle: the verdict is withheld (outcome unstable).
+  if (own_end && eroded > spec_.max_eroded_fraction) {
+    s.outcome = RunOutcome::unstable;
+    s.stop_reason = StopReason::erosion_limit;
+    s.reason = format_reason(
+        "no verdict: %.1f %% of the particle's mass was eroded (limit max_eroded_fraction "
+        "%.0f %%): the particle broke up (elements at the damage cap) or its mesh could not "
+        "follow the deformation",
+        100.0 * eroded, 100.0 * spec_.max_eroded_fraction);
+    return false;
+  }
+  if (own_end && failed) {
+    s.outcome = RunOutcome::unstable;
+    s.stop_reason = failed;
+    s.reason = "no verdict: " + guard_reason;
+    return false;
+  }
+  if (!own_end && s.stop_reason == StopReason::energy_balance) explain_energy_balance(s);
+  return own_end;
+}
+
+void ImpactRun::apply_decision(RunSummary& s, ImpactSummary& r, const VerdictDecision& decision,
+                               bool settled) const {
+  if (decision.verdict == ImpactVerdict::undecided) {
+    s.outcome = RunOutcome::unstable;
+    s.stop_reason = StopReason::undecided;
+    s.reason = "no verdict: " + decision.reason;
+    return;
+  }
+  r.verdict = to_string(decision.verdict);
+  r.settled = decision.settled;
+  s.outcome = decision.verdict == ImpactVerdict::stick ? RunOutcome::stick : RunOutcome::rebound;
+  s.reason = decision.reason;
+  if (!spec_.adaptive_end) {
+    s.stop_reason = StopReason::end_time;
+  } else {
+    s.stop_reason = settled ? StopReason::verdict_settled : StopReason::max_time;
+  }
+}
+
+void ImpactRun::finish(RunSummary& s, const Model& model,
+                       const std::optional<VerdictDecision>& settled) {
+  ImpactSummary r;
+  r.model = spec_.model;
+  r.why = spec_.why;
+  r.adaptive = spec_.adaptive_end;
+  r.hold_time = settings_.hold_time;
+  r.max_time = max_time_;
+  r.impact_velocity = spec_.velocity;
+  const double scale = model.axisymmetric ? 2.0 * std::numbers::pi : 1.0;
+  const ImpactSample now = sample(s.end_time, model);
+  r.rebound_velocity = now.v_normal;
+  r.coefficient_of_restitution =
+      spec_.velocity > 0.0 ? std::max(now.v_normal, 0.0) / spec_.velocity : 0.0;
+  r.initial_kinetic = std::max(initial_kinetic_, 0.0);
+  r.final_particle_kinetic = motion(model, particle_).kinetic * scale;
+  particle_shape(model, r);
+  for (const BodySummary& b : s.bodies) {
+    r.max_temperature = std::max(r.max_temperature, b.max_temperature);
+    r.max_plastic_strain = std::max(r.max_plastic_strain, b.max_plastic_strain);
+  }
+  interface_figures(model, now, r);
+  r.thesis_active_link = r.links_active > 0;
+  r.thesis_one_percent =
+      r.max_links_active > 0 && static_cast<double>(r.links_active) >
+                                    k_thesis_fraction * static_cast<double>(r.max_links_active);
+  r.bond_energy = now.bond_energy;
+  r.separating_kinetic = now.kinetic_leaving;
+  r.verdict = "none";
+  const bool own_end = settled.has_value() || s.stop_reason == StopReason::end_time;
+  if (verdict_allowed(s, model, own_end, r)) {
+    apply_decision(s, r, settled ? *settled : monitor_.at_end(now), settled.has_value());
+  }
+  zero_non_finite(r);
   s.impact = r;
 }
 

@@ -75,6 +75,18 @@ class ImpactRun {
   void cohesive_zone(const Model& model, ImpactSummary& r) const;
   // Mean height of the particle nodes with active links, m.
   double bonded_height(const Model& model) const;
+  // The particle's flattening ratio and penetration depth.
+  void particle_shape(const Model& model, ImpactSummary& r) const;
+  // Links, contact and bonded area, cohesive zone.
+  void interface_figures(const Model& model, const ImpactSample& now, ImpactSummary& r) const;
+  // Share of the FE particle's mass eroded (SPH particles are never deleted).
+  double eroded_fraction(const Model& model) const;
+  // Whether a run that ended on its own terms may report a verdict: not
+  // beyond the erosion limit nor past a failed physics guard (the outcome
+  // and reason then say why; r.guard gets the guard's figures).
+  bool verdict_allowed(RunSummary& s, const Model& model, bool own_end, ImpactSummary& r) const;
+  void apply_decision(RunSummary& s, ImpactSummary& r, const VerdictDecision& decision,
+                      bool settled) const;
 
   ImpactSpec spec_;
   VerdictSettings settings_;

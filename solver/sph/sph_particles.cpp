@@ -95,6 +95,124 @@ void for_lattice_points(Lattice lattice, double d, const Vec3& origin, const Vec
   }
 }
 
+// Fills a cloud with the lattice points of one shape: the spec, the
+// boundary layer thickness t and the lattice cell volume.
+class CloudBuilder {
+ public:
+  CloudBuilder(const ParticleSpec& spec, ParticleCloud& cloud)
+      : spec_(spec),
+        cloud_(cloud),
+        d_(spec.spacing),
+        t_(cloud.layer_thickness),
+        cell_(spec.lattice == Lattice::cubic ? d_ * d_ * d_ : d_ * d_ * d_ / std::sqrt(2.0)) {}
+
+  void sphere() {
+    require_positive(spec_.radius, "radius");
+    const double R = spec_.radius;
+    const Vec3 c = spec_.centre;
+    cloud_.exact_volume = 4.0 / 3.0 * std::numbers::pi * R * R * R * sector_fraction(spec_.sector);
+    const Vec3 ext = Vec3::Constant(R);
+    for_lattice_points(spec_.lattice, d_, c, c - ext, c + ext, [&](const Vec3& p) {
+      const double r = (p - c).norm();
+      if (r > R || !in_sector(p, c, spec_.sector)) return;
+      std::uint32_t bits = sector_bits(p, c);
+      Vec3 n = Vec3::Zero();
+      if (R - r < t_) {
+        bits |= boundary_curved;
+        if (r > 0.0) n = (p - c) / r;
+      }
+      add(p, cell_, bits, n);
+    });
+  }
+
+  void cylinder() {
+    require_positive(spec_.radius, "radius");
+    require_positive(spec_.z_max - spec_.z_min, "z_max - z_min");
+    const double R = spec_.radius, z0 = spec_.z_min, z1 = spec_.z_max;
+    const Vec3 c(0.0, 0.0, z0);
+    cloud_.exact_volume = std::numbers::pi * R * R * (z1 - z0) * sector_fraction(spec_.sector);
+    for_lattice_points(spec_.lattice, d_, c, Vec3(-R, -R, z0), Vec3(R, R, z1), [&](const Vec3& p) {
+      const double r = std::hypot(p.x(), p.y());
+      if (r > R || p.z() < z0 || p.z() > z1 || !in_sector(p, c, spec_.sector)) return;
+      std::uint32_t bits = sector_bits(p, c);
+      Vec3 n = Vec3::Zero();
+      if (R - r < t_) {
+        bits |= boundary_curved;
+        if (r > 0.0) n = Vec3(p.x() / r, p.y() / r, 0.0);
+      }
+      if (p.z() - z0 < t_) bits |= boundary_z_min;
+      if (z1 - p.z() < t_) bits |= boundary_z_max;
+      add(p, cell_, bits, n);
+    });
+  }
+
+  void box() {
+    const Vec3 L = spec_.hi - spec_.lo;
+    for (int a = 0; a < 3; ++a)
+      require_positive(L[a], "box extent along axis " + std::to_string(a));
+    if (spec_.sector != ParticleSector::full) {
+      throw std::invalid_argument("particle generation: boxes have no sectors; set the extent");
+    }
+    cloud_.exact_volume = L.prod();
+    if (spec_.lattice != Lattice::cubic) {
+      for_lattice_points(spec_.lattice, d_, spec_.lo, spec_.lo, spec_.hi, [&](const Vec3& p) {
+        for (int a = 0; a < 3; ++a) {
+          if (p[a] < spec_.lo[a] || p[a] > spec_.hi[a]) return;
+        }
+        add(p, cell_, box_bits(p), Vec3::Zero());
+      });
+      return;
+    }
+    // Cubic: whole cells along each axis, the spacing stretched to fit.
+    int n[3];
+    Vec3 s;
+    for (int a = 0; a < 3; ++a) {
+      n[a] = std::max(1, static_cast<int>(std::lround(L[a] / d_)));
+      s[a] = L[a] / n[a];
+    }
+    cloud_.spacing = s.mean();
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i) {
+          const Vec3 p = spec_.lo + Vec3((i + 0.5) * s.x(), (j + 0.5) * s.y(), (k + 0.5) * s.z());
+          add(p, s.prod(), box_bits(p), Vec3::Zero());
+        }
+  }
+
+ private:
+  void add(const Vec3& p, double volume, std::uint32_t bits, const Vec3& normal) {
+    cloud_.x.push_back(p);
+    cloud_.volume.push_back(volume);
+    cloud_.boundary.push_back(bits);
+    cloud_.outward_normal.push_back(normal);
+  }
+
+  // Bits of the sector planes x = c.x (quarter) and y = c.y (half, quarter).
+  std::uint32_t sector_bits(const Vec3& p, const Vec3& c) const {
+    std::uint32_t bits = boundary_none;
+    if (spec_.sector != ParticleSector::full && p.y() - c.y() < t_) bits |= boundary_y_min;
+    if (spec_.sector == ParticleSector::quarter && p.x() - c.x() < t_) bits |= boundary_x_min;
+    return bits;
+  }
+
+  std::uint32_t box_bits(const Vec3& p) const {
+    std::uint32_t bits = boundary_none;
+    const std::uint32_t lo_bit[3] = {boundary_x_min, boundary_y_min, boundary_z_min};
+    const std::uint32_t hi_bit[3] = {boundary_x_max, boundary_y_max, boundary_z_max};
+    for (int a = 0; a < 3; ++a) {
+      if (p[a] - spec_.lo[a] < t_) bits |= lo_bit[a];
+      if (spec_.hi[a] - p[a] < t_) bits |= hi_bit[a];
+    }
+    return bits;
+  }
+
+  const ParticleSpec& spec_;
+  ParticleCloud& cloud_;
+  const double d_;     // lattice spacing, m
+  const double t_;     // boundary layer thickness, m
+  const double cell_;  // volume per lattice point, m^3
+};
+
 }  // namespace
 
 ParticleCloud generate_particles(const ParticleSpec& spec) {
@@ -105,121 +223,24 @@ ParticleCloud generate_particles(const ParticleSpec& spec) {
   if (spec.jitter < 0.0 || spec.jitter >= 0.5) {
     throw std::invalid_argument("particle generation: jitter must be in [0, 0.5)");
   }
-  const double d = spec.spacing;
   ParticleCloud cloud;
-  cloud.spacing = d;
-  cloud.layer_thickness = spec.boundary_layers * d;
-  const double t = cloud.layer_thickness;
-  const double cell = spec.lattice == Lattice::cubic ? d * d * d : d * d * d / std::sqrt(2.0);
-
-  const auto add = [&](const Vec3& p, double volume, std::uint32_t bits, const Vec3& normal) {
-    cloud.x.push_back(p);
-    cloud.volume.push_back(volume);
-    cloud.boundary.push_back(bits);
-    cloud.outward_normal.push_back(normal);
-  };
-  // Bits of the sector planes x = c.x (quarter) and y = c.y (half, quarter).
-  const auto sector_bits = [&](const Vec3& p, const Vec3& c) {
-    std::uint32_t bits = boundary_none;
-    if (spec.sector != ParticleSector::full && p.y() - c.y() < t) bits |= boundary_y_min;
-    if (spec.sector == ParticleSector::quarter && p.x() - c.x() < t) bits |= boundary_x_min;
-    return bits;
-  };
-
+  cloud.spacing = spec.spacing;
+  cloud.layer_thickness = spec.boundary_layers * spec.spacing;
+  CloudBuilder build(spec, cloud);
   switch (spec.shape) {
-    case ParticleShape::sphere: {
-      require_positive(spec.radius, "radius");
-      const double R = spec.radius;
-      const Vec3 c = spec.centre;
-      cloud.exact_volume = 4.0 / 3.0 * std::numbers::pi * R * R * R * sector_fraction(spec.sector);
-      const Vec3 ext = Vec3::Constant(R);
-      for_lattice_points(spec.lattice, d, c, c - ext, c + ext, [&](const Vec3& p) {
-        const double r = (p - c).norm();
-        if (r > R || !in_sector(p, c, spec.sector)) return;
-        std::uint32_t bits = sector_bits(p, c);
-        Vec3 n = Vec3::Zero();
-        if (R - r < t) {
-          bits |= boundary_curved;
-          if (r > 0.0) n = (p - c) / r;
-        }
-        add(p, cell, bits, n);
-      });
+    case ParticleShape::sphere:
+      build.sphere();
       break;
-    }
-    case ParticleShape::cylinder: {
-      require_positive(spec.radius, "radius");
-      require_positive(spec.z_max - spec.z_min, "z_max - z_min");
-      const double R = spec.radius;
-      const Vec3 c(0.0, 0.0, spec.z_min);
-      cloud.exact_volume =
-          std::numbers::pi * R * R * (spec.z_max - spec.z_min) * sector_fraction(spec.sector);
-      for_lattice_points(spec.lattice, d, c, Vec3(-R, -R, spec.z_min), Vec3(R, R, spec.z_max),
-                         [&](const Vec3& p) {
-                           const double r = std::hypot(p.x(), p.y());
-                           if (r > R || p.z() < spec.z_min || p.z() > spec.z_max ||
-                               !in_sector(p, c, spec.sector)) {
-                             return;
-                           }
-                           std::uint32_t bits = sector_bits(p, c);
-                           Vec3 n = Vec3::Zero();
-                           if (R - r < t) {
-                             bits |= boundary_curved;
-                             if (r > 0.0) n = Vec3(p.x() / r, p.y() / r, 0.0);
-                           }
-                           if (p.z() - spec.z_min < t) bits |= boundary_z_min;
-                           if (spec.z_max - p.z() < t) bits |= boundary_z_max;
-                           add(p, cell, bits, n);
-                         });
+    case ParticleShape::cylinder:
+      build.cylinder();
       break;
-    }
-    case ParticleShape::box: {
-      const Vec3 L = spec.hi - spec.lo;
-      for (int a = 0; a < 3; ++a)
-        require_positive(L[a], "box extent along axis " + std::to_string(a));
-      if (spec.sector != ParticleSector::full) {
-        throw std::invalid_argument("particle generation: boxes have no sectors; set the extent");
-      }
-      cloud.exact_volume = L.prod();
-      const auto bits_of = [&](const Vec3& p) {
-        std::uint32_t bits = boundary_none;
-        const std::uint32_t lo_bit[3] = {boundary_x_min, boundary_y_min, boundary_z_min};
-        const std::uint32_t hi_bit[3] = {boundary_x_max, boundary_y_max, boundary_z_max};
-        for (int a = 0; a < 3; ++a) {
-          if (p[a] - spec.lo[a] < t) bits |= lo_bit[a];
-          if (spec.hi[a] - p[a] < t) bits |= hi_bit[a];
-        }
-        return bits;
-      };
-      if (spec.lattice == Lattice::cubic) {
-        int n[3];
-        Vec3 s;
-        for (int a = 0; a < 3; ++a) {
-          n[a] = std::max(1, static_cast<int>(std::lround(L[a] / d)));
-          s[a] = L[a] / n[a];
-        }
-        cloud.spacing = s.mean();
-        for (int k = 0; k < n[2]; ++k)
-          for (int j = 0; j < n[1]; ++j)
-            for (int i = 0; i < n[0]; ++i) {
-              const Vec3 p =
-                  spec.lo + Vec3((i + 0.5) * s.x(), (j + 0.5) * s.y(), (k + 0.5) * s.z());
-              add(p, s.prod(), bits_of(p), Vec3::Zero());
-            }
-      } else {
-        for_lattice_points(spec.lattice, d, spec.lo, spec.lo, spec.hi, [&](const Vec3& p) {
-          for (int a = 0; a < 3; ++a) {
-            if (p[a] < spec.lo[a] || p[a] > spec.hi[a]) return;
-          }
-          add(p, cell, bits_of(p), Vec3::Zero());
-        });
-      }
+    case ParticleShape::box:
+      build.box();
       break;
-    }
   }
-
   if (spec.jitter > 0.0) {
     std::uint64_t state = spec.jitter_seed;
-    const double a = spec.jitter * d;
+    const double a = spec.jitter * spec.spacing;
     for (Vec3& p : cloud.x) {
       for (int c = 0; c < 3; ++c) p[c] += a * uniform_pm1(state);
     }
