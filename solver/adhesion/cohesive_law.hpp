@@ -1,7 +1,8 @@
 // The cohesive adhesion law of one contact pair (thesis 1.4.4 and 2.2):
 // energy exhaustion (Griffith, G_c per bonded area), optional tensile stress
 // cap (Dugdale-Barenblatt, sigma_c, or the flow stress of the weaker side),
-// activation on a yield-stress drop, and erosion on damage. Pointwise: every
+// activation on a yield-stress drop or on the interface temperature, and
+// erosion on damage. Pointwise: every
 // function here acts on ONE pair; the loop over pairs and the
 // Lagrange-multiplier solve live in the contact stage, which feeds the
 // activation and erosion tests and the flow-stress cap with the interface
@@ -96,9 +97,24 @@
 #include <limits>
 #include <optional>
 
+#include "solver/adhesion/interface_average.hpp"
+#include "solver/common/enum_names.hpp"
+
 namespace splat {
 
-enum class ActivationRule { none, yield_drop };
+// What turns a pair in contact into a bond (thesis 2.2.2; 5.3.2 names the
+// temperature among the criteria worth trying): each rule is one case of
+// side_activated below, reading the averaged InterfaceSideState.
+enum class ActivationRule { none, yield_drop, temperature };
+inline constexpr NameTable<ActivationRule, 3> k_activation_rule_names{{
+    {ActivationRule::none, "none"},
+    {ActivationRule::yield_drop, "yield-drop"},
+    {ActivationRule::temperature, "temperature"},
+}};
+static_assert(names_in_order(k_activation_rule_names));
+constexpr const auto& names_of(ActivationRule) {
+  return k_activation_rule_names;
+}
 
 // Default averaging length of the interface state, m: the order of the heat
 // diffusion length sqrt(kappa t) of the interface over an impact, with the
@@ -121,6 +137,8 @@ struct AdhesionParams {
   bool cap_at_flow_stress = false;
   ActivationRule activation = ActivationRule::none;
   double yield_drop = 0.0;  // fraction in [0,1): activation when sigma_y <= (1-x)*peak
+  // Rule temperature: activation when T / T_melt of a side reaches this, -.
+  double homologous_temperature = 1.0;
   ActivationSides sides = ActivationSides::either;
   std::optional<double> D_adh_max;  // damage at which a link erodes; empty = never
   // Radius of the material around a contact point over which activation,
@@ -133,28 +151,31 @@ enum class LinkState : std::uint8_t { none, contact, active, exhausted, eroded }
 
 const char* to_string(LinkState s);
 
-// The yield stresses of one side of a pair, as the activation test needs them.
-struct SideYield {
-  double sigma_y_static = 0.0;       // Pa, current rate-free yield stress
-  double sigma_y_static_peak = 0.0;  // Pa, largest sigma_y_static seen at that point
-};
-
-// One side has dropped: sigma_y_static <= (1 - yield_drop) sigma_y_static_peak.
-inline bool side_yield_dropped(const AdhesionParams& p, const SideYield& s) {
-  return s.sigma_y_static <= (1.0 - p.yield_drop) * s.sigma_y_static_peak;
+// One side of a pair meets the activation rule: for yield_drop its rate-free
+// yield stress has fallen yield_drop below the largest value seen there
+// (yield_ratio <= 1 - yield_drop); for temperature it has reached
+// homologous_temperature. A side without material (InterfaceSideState{})
+// never meets either.
+inline bool side_activated(const AdhesionParams& p, const InterfaceSideState& s) {
+  switch (p.activation) {
+    case ActivationRule::none:
+      return true;
+    case ActivationRule::yield_drop:
+      return s.yield_ratio <= 1.0 - p.yield_drop;
+    case ActivationRule::temperature:
+      return s.homologous_temperature >= p.homologous_temperature;
+  }
+  return false;
 }
 
-// A side without material (a rigid body): its yield stress never drops
-// (for yield_drop > 0), so `both` can never activate against it.
-inline constexpr SideYield rigid_side{1.0, 1.0};
-
 // Activation test of thesis 2.2.2 for a pair with sides a and b: always true
-// for ActivationRule::none; for yield_drop, the drop on either side or on both
+// for ActivationRule::none; otherwise the rule met on either side or on both
 // (ActivationSides).
-inline bool activation_met(const AdhesionParams& p, const SideYield& a, const SideYield& b) {
+inline bool activation_met(const AdhesionParams& p, const InterfaceSideState& a,
+                           const InterfaceSideState& b) {
   if (p.activation == ActivationRule::none) return true;
-  const bool da = side_yield_dropped(p, a);
-  const bool db = side_yield_dropped(p, b);
+  const bool da = side_activated(p, a);
+  const bool db = side_activated(p, b);
   return p.sides == ActivationSides::both ? (da && db) : (da || db);
 }
 

@@ -39,7 +39,7 @@ CellGrid build_grid(const std::vector<MaterialSample>& samples, double length) {
 
 InterfaceSideState average_one(const std::vector<MaterialSample>& samples, const CellGrid& g,
                                const Vec3& c, double length, const InterfaceSideState& fallback) {
-  InterfaceSideState sum{0.0, 0.0, 0.0};
+  InterfaceSideState sum{0.0, 0.0, 0.0, 0.0};
   double w_sum = 0.0;
   const long cx = g.index(c.x()), cy = g.index(c.y()), cz = g.index(c.z());
   for (long ix = cx - 1; ix <= cx + 1; ++ix) {
@@ -51,19 +51,38 @@ InterfaceSideState average_one(const std::vector<MaterialSample>& samples, const
           const MaterialSample& s = samples[j];
           const double w = s.weight * std::max(0.0, 1.0 - (s.x - c).norm() / length);
           if (!(w > 0.0)) continue;
-          sum.yield_ratio += w * s.state.yield_ratio;
-          sum.damage += w * s.state.damage;
-          sum.flow_stress += w * s.state.flow_stress;
+          accumulate(sum, w, s.state);
           w_sum += w;
         }
       }
     }
   }
   if (!(w_sum > 0.0)) return fallback;
-  return {sum.yield_ratio / w_sum, sum.damage / w_sum, sum.flow_stress / w_sum};
+  return divided(sum, w_sum);
 }
 
 }  // namespace
+
+InterfaceSideState side_state(const PointState& st, double T_melt) {
+  InterfaceSideState s;
+  s.yield_ratio = st.sigma_y_static_peak > 0.0 ? st.sigma_y_static / st.sigma_y_static_peak : 1.0;
+  s.damage = st.D;
+  s.flow_stress = st.sigma_y_static;
+  s.homologous_temperature = T_melt > 0.0 ? st.T / T_melt : 0.0;
+  return s;
+}
+
+void accumulate(InterfaceSideState& sum, double w, const InterfaceSideState& s) {
+  sum.yield_ratio += w * s.yield_ratio;
+  sum.damage += w * s.damage;
+  sum.flow_stress += w * s.flow_stress;
+  sum.homologous_temperature += w * s.homologous_temperature;
+}
+
+InterfaceSideState divided(const InterfaceSideState& sum, double w_sum) {
+  return {sum.yield_ratio / w_sum, sum.damage / w_sum, sum.flow_stress / w_sum,
+          sum.homologous_temperature / w_sum};
+}
 
 std::vector<InterfaceSideState> average_around(const std::vector<MaterialSample>& samples,
                                                const std::vector<Vec3>& centres, double length,

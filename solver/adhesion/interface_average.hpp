@@ -6,8 +6,8 @@
 // The points j are the material points of one side (element centres of an
 // FE body, particles of an SPH body) with position x_j (m), weight V_j (their
 // volume, m^3, or any common scale: per radian in axisymmetric runs) and state
-// q_j (the yield ratio sigma_y_static / sigma_y_static_peak, the damage D and
-// the flow stress sigma_y_static). The state around a centre c_k (a contact
+// q_j (InterfaceSideState: the yield ratio, damage, flow stress and
+// homologous temperature of the point). The state around a centre c_k (a contact
 // point) is
 //   <q>_k = sum_j w_kj q_j / sum_j w_kj,   w_kj = V_j max(0, 1 - |x_j - c_k| / l)
 // (the nonlocal integral form with a truncated-cone weight, Bazant and
@@ -23,17 +23,30 @@
 #include <vector>
 
 #include "solver/common/types.hpp"
+#include "solver/material/point_update.hpp"
 
 namespace splat {
 
-// The state of one side of the interface at one point, or its average.
+// The state of one side of the interface at one point, or its average: what
+// link activation, erosion and the strength cap read (cohesive_law.hpp). The
+// defaults are a side without material (rigid): it never softens, heats or
+// fails, and is stronger than any bond.
 struct InterfaceSideState {
-  double yield_ratio = 1.0;  // sigma_y_static / sigma_y_static_peak, -
-  double damage = 0.0;       // D, -
-  // Current rate-free yield stress sigma_y_static, Pa; a side without
-  // material (rigid) is taken as 1e30 Pa, stronger than any bond.
-  double flow_stress = 1e30;
+  double yield_ratio = 1.0;             // sigma_y_static / sigma_y_static_peak, -
+  double damage = 0.0;                  // D, -
+  double flow_stress = 1e30;            // current rate-free yield stress sigma_y_static, Pa
+  double homologous_temperature = 0.0;  // T / T_melt, -
 };
+
+// The state of a material point with state `st` of a material melting at
+// T_melt (K).
+InterfaceSideState side_state(const PointState& st, double T_melt);
+
+// sum += w s, field by field (the weighted sums of an average).
+void accumulate(InterfaceSideState& sum, double w, const InterfaceSideState& s);
+
+// A weighted sum divided by its total weight w_sum > 0.
+InterfaceSideState divided(const InterfaceSideState& sum, double w_sum);
 
 struct MaterialSample {
   Vec3 x = Vec3::Zero();  // m

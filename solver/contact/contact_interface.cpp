@@ -36,9 +36,9 @@ namespace {
 // face size, -: a larger step distorts the elements behind the face.
 constexpr double k_pushout_fraction = 0.02;
 
-// sigma_y_static / sigma_y_static_peak of one point (1 before it yields).
-double yield_ratio(const PointState& st) {
-  return st.sigma_y_static_peak > 0.0 ? st.sigma_y_static / st.sigma_y_static_peak : 1.0;
+// The melting temperature of a body's material, K.
+double melt_temperature(const Material& m) {
+  return strength_references(m.strength).T_melt;
 }
 
 // Key of a pair for the warm start: its slave's global node and its face.
@@ -487,27 +487,25 @@ double ContactInterface::adhesive_area(int k, int f, const std::vector<Vec3>& x,
 // weighted by their volume: the fallback of average_around where no
 // material point lies within averaging_length (interface_states).
 InterfaceSideState ContactInterface::slave_side_state(const FeBody& slave, int k) const {
-  double w_sum = 0.0, ratio = 0.0, damage = 0.0, flow = 0.0;
+  const double T_melt = melt_temperature(slave.material);
+  InterfaceSideState sum{0.0, 0.0, 0.0, 0.0};
+  double w_sum = 0.0;
   for (int j = slave_elem_offsets_[k]; j < slave_elem_offsets_[k + 1]; ++j) {
     const int e = slave_elem_entries_[j];
     if (!slave.active[e]) continue;
     const double w = slave.volume[e];
     if (!(w > 0.0)) continue;
-    const PointState& st = slave.state[e];
-    ratio += w * yield_ratio(st);
-    damage += w * st.D;
-    flow += w * st.sigma_y_static;
+    accumulate(sum, w, side_state(slave.state[e], T_melt));
     w_sum += w;
   }
   if (!(w_sum > 0.0)) return {};
-  return {ratio / w_sum, damage / w_sum, flow / w_sum};
+  return divided(sum, w_sum);
 }
 
 InterfaceSideState ContactInterface::master_side_state(const FeBody& master, int f) const {
   const int e = f >= 0 ? master_face_element_[f] : -1;
   if (e < 0 || !master.active[e]) return {};  // never drops
-  const PointState& st = master.state[e];
-  return {yield_ratio(st), st.D, st.sigma_y_static};
+  return side_state(master.state[e], melt_temperature(master.material));
 }
 
 AdhesionParams ContactInterface::link_params(int k) const {
@@ -565,7 +563,7 @@ namespace {
 InterfaceSideState particle_state(const SphBody& b, int g) {
   const std::size_t i = static_cast<std::size_t>(g) - b.node_begin;
   if (!b.active[i]) return InterfaceSideState{};
-  return {yield_ratio(b.state[i]), b.state[i].D, b.state[i].sigma_y_static};
+  return side_state(b.state[i], melt_temperature(b.material));
 }
 
 // The live material points of one body inside the box [lo, hi]: element
@@ -574,6 +572,7 @@ InterfaceSideState particle_state(const SphBody& b, int g) {
 std::vector<MaterialSample> fe_samples(const FeBody& b, const NodeSet& nodes, const Vec3& lo,
                                        const Vec3& hi) {
   std::vector<MaterialSample> out;
+  const double T_melt = melt_temperature(b.material);
   const int npe = b.nodes_per_element();
   for (std::size_t e = 0; e < b.num_elements(); ++e) {
     if (!b.active[e]) continue;
@@ -581,8 +580,7 @@ std::vector<MaterialSample> fe_samples(const FeBody& b, const NodeSet& nodes, co
     for (int a = 0; a < npe; ++a) c += nodes.x[b.conn[e][a]];
     c /= npe;
     if ((c.array() < lo.array()).any() || (c.array() > hi.array()).any()) continue;
-    const PointState& st = b.state[e];
-    out.push_back({c, b.volume[e], {yield_ratio(st), st.D, st.sigma_y_static}});
+    out.push_back({c, b.volume[e], side_state(b.state[e], T_melt)});
   }
   return out;
 }
@@ -669,7 +667,7 @@ void ContactInterface::update_links_before_solve(const NodeSet& nodes,
     const LinkState before = link_state_[k];
     LinkEvents ev;
     ev.touching = link_touching_[k] != 0;
-    ev.activation_met = activation_met(ap, {a.yield_ratio, 1.0}, {b.yield_ratio, 1.0});
+    ev.activation_met = activation_met(ap, a, b);
     ev.erosion_met = erosion_met(ap, a.damage, b.damage);
     const LinkState after = next_link_state(before, ap.activation, ev);
     if (after == before) continue;
@@ -685,6 +683,240 @@ void ContactInterface::update_links_before_solve(const NodeSet& nodes,
 void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
                                      double dt, const std::vector<FeBody>& bodies) {
   lagrange_step(nodes, mask, dt, bodies, {});
+}
+
+int ContactInterface::pair_slave_node(const std::vector<DetectedPair>& pairs, std::size_t i) const {
+  const ContactSurface& sl = i < first_pass_pairs_ ? slave_ : master_;
+  return sl.nodes[pairs[i].slave];
+}
+
+// Warm start: each pair starts from the multiplier it carried in the last
+// step, so a pressed contact needs only the sweeps that follow its change
+// over one step.
+void ContactInterface::warm_start(const std::vector<DetectedPair>& pairs, double dt) {
+  problem_.p_start.assign(pairs.size(), 0.0);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto it = last_multiplier_.find(pair_key(pair_slave_node(pairs, i), pairs[i].face));
+    if (it != last_multiplier_.end()) problem_.p_start[i] = it->second * dt;
+  }
+}
+
+std::vector<std::size_t> ContactInterface::link_rows(const std::vector<DetectedPair>& pairs,
+                                                     double dt) {
+  std::vector<std::size_t> links;
+  for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+    const int k = pairs[i].slave;
+    if (!pairs[i].primary || link_state_[k] != LinkState::active) continue;
+    const double rate = normal_rate(problem_, i, problem_.velocity);
+    const double g_n = pairs[i].geometry.gap - dt * rate;
+    problem_.lo[i] = -max_tension(link_params(k), link_area_[k]) * dt;
+    problem_.b_hold[i] = problem_.b[i] + std::max(g_n, 0.0) / dt;
+    links.push_back(i);
+  }
+  return links;
+}
+
+void ContactInterface::charge_links(const std::vector<DetectedPair>& pairs,
+                                    const std::vector<std::size_t>& links, ContactSolution& sol,
+                                    double dt, const std::vector<FeBody>& bodies,
+                                    const std::vector<SphBody>& sph) {
+  std::vector<std::uint8_t> exhausted(links.size(), 0);
+  auto link_step = [&](std::size_t j, const ContactSolution& s) {
+    const std::size_t i = links[j];
+    const int k = pairs[i].slave;
+    const double h = normal_inverse_mass(problem_, i);
+    const double I = -s.p_n[i];
+    const double g_free = normal_rate(problem_, i, s.dv) + h * I - problem_.b_hold[i];
+    const LinkKinematics kin{link_rate_[k], g_free, h,
+                             link_compliance(k, pairs[i].face, bodies, sph)};
+    return cohesive_step(link_params(k), link_area_[k], link_work_[k], kin, dt, I);
+  };
+  bool resolve = false;
+  for (std::size_t j = 0; j < links.size(); ++j) {
+    if (!(sol.p_n[links[j]] < 0.0)) continue;
+    const CohesiveStep c = link_step(j, sol);
+    if (c.exhausted) {
+      exhausted[j] = 1;
+      problem_.lo[links[j]] = -c.impulse;
+      resolve = true;
+    }
+  }
+  if (resolve) {
+    problem_.p_start = sol.p_n;
+    sol = solve_contact(problem_, settings_.solver);
+  }
+  double adhesion_work = 0.0;
+  for (std::size_t j = 0; j < links.size(); ++j) {
+    const int k = pairs[links[j]].slave;
+    if (sol.p_n[links[j]] < 0.0) {
+      ++stats_.links_in_tension;
+      const CohesiveStep c = link_step(j, sol);
+      const double dW =
+          exhausted[j]
+              ? std::max(work_budget(*settings_.adhesion, link_area_[k]) - link_work_[k], 0.0)
+              : c.work;
+      link_work_[k] += dW;
+      adhesion_work += dW;
+      if (c.exhausted) exhausted[j] = 1;
+    }
+    if (exhausted[j]) {
+      link_state_[k] = next_link_state(link_state_[k], settings_.adhesion->activation,
+                                       {false, false, false, true});
+      ++stats_.links_exhausted;
+    }
+  }
+  stats_.adhesion_work += adhesion_work * scale();
+}
+
+void ContactInterface::apply_solution(NodeSet& nodes, const std::vector<DetectedPair>& pairs,
+                                      const ContactSolution& sol, double dt) {
+  stats_.max_iterations = std::max(stats_.max_iterations, sol.iterations);
+  stats_.max_residual = std::max(stats_.max_residual, sol.residual);
+  if (!sol.converged) ++stats_.unconverged;
+  for (std::size_t l = 0; l < local_nodes_.size(); ++l) {
+    const int g = local_nodes_[l];
+    const Vec3& dv = sol.dv[l];
+    if (dv.isZero(0.0)) continue;
+    nodes.v[g] += dv;
+    nodes.x[g] += dt * dv;
+  }
+  correct_positions(nodes, pairs, sol, dt);
+  last_multiplier_.clear();
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (sol.p_n[i] != 0.0)
+      last_multiplier_[pair_key(pair_slave_node(pairs, i), pairs[i].face)] = sol.p_n[i] / dt;
+  }
+}
+
+// Contact work: every impulse (compression, link tension, friction) times
+// the corrected relative velocity (eq. 1.21), the work of a force held over
+// the step on the displacement it drives. This, not the link's budget
+// charge, is the work the energy balance sees.
+//
+// A slave node that carried no force in the last step (it lands on the face
+// within this step, or is found already behind it: a node exposed by
+// erosion, a fold) makes a node-level plastic impact: its impulse takes out
+// the kinetic energy of its approach, booked as p (C v_before + C v_after) /
+// 2 (the kinetic energy change of one row). Without it that energy (1500 m/s
+// Al impact: 2-3 % of the initial energy) leaves outside the balance. Pairs
+// that stay in contact keep p C v_after: their "penetration" at x_n is the
+// linearised gap of a pressed contact, and the approach the force update
+// gives them each step is taken back at once (header).
+double ContactInterface::contact_work(const std::vector<DetectedPair>& pairs,
+                                      const ContactSolution& sol,
+                                      const std::vector<Vec3>& v_new) const {
+  double work = 0.0;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (sol.p_n[i] != 0.0) {
+      const double after = normal_rate(problem_, i, v_new);
+      const bool landing =
+          i < first_pass_pairs_ && !pressed_[static_cast<std::size_t>(pairs[i].slave)];
+      const double before = landing ? normal_rate(problem_, i, problem_.velocity) : after;
+      work += sol.p_n[i] * 0.5 * (before + after);
+    }
+    if (problem_.mu[i] > 0.0) {
+      double st1 = 0.0, st2 = 0.0;
+      for (int k = 0; k < 5; ++k) {
+        const int n = problem_.node[i][k];
+        if (n < 0) continue;
+        st1 += problem_.coef[i][k] * problem_.tangent1[i].dot(v_new[n]);
+        st2 += problem_.coef[i][k] * problem_.tangent2[i].dot(v_new[n]);
+      }
+      work += sol.p_t[i].x() * st1 + sol.p_t[i].y() * st2;
+    }
+  }
+  return work;
+}
+
+// After the solve: each slave node's opening rate (the rate a link starts
+// the next step from, 0 for nodes in no pair), which nodes carried a force,
+// and the contact counts.
+void ContactInterface::record_pair_states(const std::vector<DetectedPair>& pairs,
+                                          const ContactSolution& sol,
+                                          const std::vector<Vec3>& v_new) {
+  const bool adhesive = settings_.adhesion.has_value();
+  if (adhesive) {
+    std::fill(link_rate_.begin(), link_rate_.end(), 0.0);
+    for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+      if (pairs[i].primary) link_rate_[pairs[i].slave] = normal_rate(problem_, i, v_new);
+    }
+  }
+  std::fill(pressed_.begin(), pressed_.end(), 0);
+  for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
+    if (sol.p_n[i] != 0.0) pressed_[pairs[i].slave] = 1;  // compression or link tension
+  }
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (!(sol.p_n[i] > 0.0)) continue;
+    ++stats_.in_contact;
+    if (i >= first_pass_pairs_) continue;
+    if (!touched_[pairs[i].slave]) {
+      touched_[pairs[i].slave] = 1;
+      ++stats_.ever_in_contact;
+    }
+    if (adhesive) link_touching_[pairs[i].slave] = 1;
+  }
+  stats_.max_in_contact = std::max(stats_.max_in_contact, stats_.in_contact);
+}
+
+void ContactInterface::solve_pairs(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
+                                   std::vector<DetectedPair>& pairs, double dt,
+                                   const std::vector<FeBody>& bodies,
+                                   const std::vector<SphBody>& sph) {
+  for (const DetectedPair& p : pairs) {
+    stats_.max_penetration = std::max(stats_.max_penetration, -p.geometry.gap);
+  }
+  build_problem(nodes, mask, pairs, dt);
+  drop_repeated_rows(nodes, mask, pairs, dt);
+  limit_pushout(bodies);
+  warm_start(pairs, dt);
+  // Active links: tension allowed down to the cap, holding the opening the
+  // pair has at the start of the step, g_n = g_{n+1} - dt C v_{n+1/2}.
+  const std::vector<std::size_t> links =
+      settings_.adhesion ? link_rows(pairs, dt) : std::vector<std::size_t>{};
+  ContactSolution sol = solve_contact(problem_, settings_.solver);
+  if (!links.empty()) charge_links(pairs, links, sol, dt, bodies, sph);
+  apply_solution(nodes, pairs, sol, dt);
+  std::vector<Vec3> v_new(local_nodes_.size());
+  for (std::size_t l = 0; l < local_nodes_.size(); ++l) v_new[l] = nodes.v[local_nodes_[l]];
+  stats_.work += contact_work(pairs, sol, v_new) * scale();
+  record_pair_states(pairs, sol, v_new);
+}
+
+void ContactInterface::summarise_links(const std::vector<DetectedPair>& pairs) {
+  // An active link whose pair opened beyond the search range (possible
+  // only with a stress cap) has let go: it counts as exhausted.
+  std::vector<std::uint8_t> seen(slave_.nodes.size(), 0);
+  for (std::size_t i = 0; i < first_pass_pairs_; ++i) seen[pairs[i].slave] = 1;
+  for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
+    if (link_state_[k] == LinkState::active && !seen[k]) {
+      link_state_[k] = next_link_state(link_state_[k], settings_.adhesion->activation,
+                                       {false, false, false, true});
+      ++stats_.links_exhausted;
+    }
+  }
+  stats_.links_active = 0;
+  double area = 0.0, remaining = 0.0;
+  stats_.bond_damage = 0.0;
+  double strength_area = 0.0, force_cap = 0.0;
+  for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
+    if (link_state_[k] != LinkState::active) continue;
+    ++stats_.links_active;
+    const std::optional<double> sc = link_params(static_cast<int>(k)).sigma_c;
+    strength_area += (sc ? *sc : 0.0) * link_area_[k];
+    force_cap += sc ? *sc * link_area_[k] : std::numeric_limits<double>::infinity();
+    if (settings_.adhesion->D_adh_max) {
+      stats_.bond_damage =
+          std::max(stats_.bond_damage, link_damage_[k] / *settings_.adhesion->D_adh_max);
+    }
+    area += link_area_[k];
+    remaining += std::max(work_budget(*settings_.adhesion, link_area_[k]) - link_work_[k], 0.0);
+  }
+  stats_.bonded_area = area * scale();
+  stats_.bond_strength = area > 0.0 ? strength_area / area : 0.0;
+  stats_.bond_force = force_cap * scale();
+  stats_.bond_energy = remaining * scale();
+  stats_.max_bonded_area = std::max(stats_.max_bonded_area, stats_.bonded_area);
+  stats_.max_links_active = std::max(stats_.max_links_active, stats_.links_active);
 }
 
 void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
@@ -709,210 +941,8 @@ void ContactInterface::lagrange_step(NodeSet& nodes, const std::vector<std::uint
     std::fill(link_touching_.begin(), link_touching_.end(), 0);
   }
   if (pairs.empty()) last_multiplier_.clear();
-  if (!pairs.empty()) {
-    for (const DetectedPair& p : pairs) {
-      stats_.max_penetration = std::max(stats_.max_penetration, -p.geometry.gap);
-    }
-    build_problem(nodes, mask, pairs, dt);
-    drop_repeated_rows(nodes, mask, pairs, dt);
-    limit_pushout(bodies);
-    // Warm start: each pair starts from the multiplier it carried in the
-    // last step, so a pressed contact needs only the sweeps that follow its
-    // change over one step.
-    auto slave_node = [&](std::size_t i) {
-      const ContactSurface& sl = i < first_pass_pairs_ ? slave_ : master_;
-      return sl.nodes[pairs[i].slave];
-    };
-    problem_.p_start.assign(pairs.size(), 0.0);
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      const auto it = last_multiplier_.find(pair_key(slave_node(i), pairs[i].face));
-      if (it != last_multiplier_.end()) problem_.p_start[i] = it->second * dt;
-    }
-    // Active links: tension allowed down to the cap, holding the opening the
-    // pair has at the start of the step, g_n = g_{n+1} - dt C v_{n+1/2}.
-    std::vector<std::size_t> links;
-    if (adhesive) {
-      for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
-        const int k = pairs[i].slave;
-        if (!pairs[i].primary || link_state_[k] != LinkState::active) continue;
-        const double rate = normal_rate(problem_, i, problem_.velocity);
-        const double g_n = pairs[i].geometry.gap - dt * rate;
-        problem_.lo[i] = -max_tension(link_params(k), link_area_[k]) * dt;
-        problem_.b_hold[i] = problem_.b[i] + std::max(g_n, 0.0) / dt;
-        links.push_back(i);
-      }
-    }
-    ContactSolution sol = solve_contact(problem_, settings_.solver);
-    // Budget charge of the links (cohesive_law.hpp): per link, the opening
-    // rate at the start of the step (link_rate_), the rate without its own
-    // impulse g_free, its inverse mass h and the compliance of both sides
-    // give the work I (g_prev + g_after) / 2 and the stored energy c F^2 / 2;
-    // a link whose budget runs out this step keeps only the impulse that
-    // spends it exactly, and the others are solved again with that impulse
-    // fixed.
-    std::vector<std::uint8_t> exhausted(links.size(), 0);
-    auto link_step = [&](std::size_t j, const ContactSolution& s) {
-      const std::size_t i = links[j];
-      const int k = pairs[i].slave;
-      const double h = normal_inverse_mass(problem_, i);
-      const double I = -s.p_n[i];
-      const double g_free = normal_rate(problem_, i, s.dv) + h * I - problem_.b_hold[i];
-      const LinkKinematics kin{link_rate_[k], g_free, h,
-                               link_compliance(k, pairs[i].face, bodies, sph)};
-      return cohesive_step(link_params(k), link_area_[k], link_work_[k], kin, dt, I);
-    };
-    if (!links.empty()) {
-      bool resolve = false;
-      for (std::size_t j = 0; j < links.size(); ++j) {
-        if (!(sol.p_n[links[j]] < 0.0)) continue;
-        const CohesiveStep c = link_step(j, sol);
-        if (c.exhausted) {
-          exhausted[j] = 1;
-          problem_.lo[links[j]] = -c.impulse;
-          resolve = true;
-        }
-      }
-      if (resolve) {
-        problem_.p_start = sol.p_n;
-        sol = solve_contact(problem_, settings_.solver);
-      }
-      double adhesion_work = 0.0;
-      for (std::size_t j = 0; j < links.size(); ++j) {
-        const int k = pairs[links[j]].slave;
-        if (sol.p_n[links[j]] < 0.0) {
-          ++stats_.links_in_tension;
-          const CohesiveStep c = link_step(j, sol);
-          const double dW =
-              exhausted[j]
-                  ? std::max(work_budget(*settings_.adhesion, link_area_[k]) - link_work_[k], 0.0)
-                  : c.work;
-          link_work_[k] += dW;
-          adhesion_work += dW;
-          if (c.exhausted) exhausted[j] = 1;
-        }
-        if (exhausted[j]) {
-          link_state_[k] = next_link_state(link_state_[k], settings_.adhesion->activation,
-                                           {false, false, false, true});
-          ++stats_.links_exhausted;
-        }
-      }
-      stats_.adhesion_work += adhesion_work * scale();
-    }
-    stats_.max_iterations = std::max(stats_.max_iterations, sol.iterations);
-    stats_.max_residual = std::max(stats_.max_residual, sol.residual);
-    if (!sol.converged) ++stats_.unconverged;
-    for (std::size_t l = 0; l < local_nodes_.size(); ++l) {
-      const int g = local_nodes_[l];
-      const Vec3& dv = sol.dv[l];
-      if (dv.isZero(0.0)) continue;
-      nodes.v[g] += dv;
-      nodes.x[g] += dt * dv;
-    }
-    correct_positions(nodes, pairs, sol, dt);
-    last_multiplier_.clear();
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      if (sol.p_n[i] != 0.0)
-        last_multiplier_[pair_key(slave_node(i), pairs[i].face)] = sol.p_n[i] / dt;
-    }
-    // Contact work: every impulse (compression, link tension, friction) times
-    // the corrected relative velocity (eq. 1.21), the work of a force held
-    // over the step on the displacement it drives. This, not the link's
-    // budget charge, is the work the energy balance sees.
-    std::vector<Vec3> v_new(local_nodes_.size());
-    for (std::size_t l = 0; l < local_nodes_.size(); ++l) v_new[l] = nodes.v[local_nodes_[l]];
-    // A slave node that carried no force in the last step (it lands on the
-    // face within this step, or is found already behind it: a node exposed
-    // by erosion, a fold) makes a node-level plastic impact: its impulse
-    // takes out the kinetic energy of its approach, booked as
-    // p (C v_before + C v_after) / 2 (the kinetic energy change of one row).
-    // Without it that energy (1500 m/s Al impact: 2-3 % of the initial
-    // energy) leaves outside the balance. Pairs that stay in contact keep
-    // p C v_after: their "penetration" at x_n is the linearised gap of a
-    // pressed contact, and the approach the force update gives them each
-    // step is taken back at once (header).
-    double work = 0.0;
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      if (sol.p_n[i] != 0.0) {
-        const double after = normal_rate(problem_, i, v_new);
-        const bool landing =
-            i < first_pass_pairs_ && !pressed_[static_cast<std::size_t>(pairs[i].slave)];
-        const double before = landing ? normal_rate(problem_, i, problem_.velocity) : after;
-        work += sol.p_n[i] * 0.5 * (before + after);
-      }
-      if (problem_.mu[i] > 0.0) {
-        double st1 = 0.0, st2 = 0.0;
-        for (int k = 0; k < 5; ++k) {
-          const int n = problem_.node[i][k];
-          if (n < 0) continue;
-          st1 += problem_.coef[i][k] * problem_.tangent1[i].dot(v_new[n]);
-          st2 += problem_.coef[i][k] * problem_.tangent2[i].dot(v_new[n]);
-        }
-        work += sol.p_t[i].x() * st1 + sol.p_t[i].y() * st2;
-      }
-    }
-    stats_.work += work * scale();
-    if (adhesive) {
-      // Each slave node's opening rate at the end of this step: the rate a
-      // link starts the next step from (0 for nodes in no pair).
-      std::fill(link_rate_.begin(), link_rate_.end(), 0.0);
-      for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
-        if (pairs[i].primary) link_rate_[pairs[i].slave] = normal_rate(problem_, i, v_new);
-      }
-    }
-    std::fill(pressed_.begin(), pressed_.end(), 0);
-    for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
-      if (sol.p_n[i] != 0.0) pressed_[pairs[i].slave] = 1;  // compression or link tension
-    }
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      if (sol.p_n[i] > 0.0) {
-        ++stats_.in_contact;
-        if (i < first_pass_pairs_) {
-          if (!touched_[pairs[i].slave]) {
-            touched_[pairs[i].slave] = 1;
-            ++stats_.ever_in_contact;
-          }
-          if (adhesive) link_touching_[pairs[i].slave] = 1;
-        }
-      }
-    }
-    stats_.max_in_contact = std::max(stats_.max_in_contact, stats_.in_contact);
-  }
-  if (adhesive) {
-    // An active link whose pair opened beyond the search range (possible
-    // only with a stress cap) has let go: it counts as exhausted.
-    std::vector<std::uint8_t> seen(slave_.nodes.size(), 0);
-    for (std::size_t i = 0; i < first_pass_pairs_; ++i) seen[pairs[i].slave] = 1;
-    for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
-      if (link_state_[k] == LinkState::active && !seen[k]) {
-        link_state_[k] = next_link_state(link_state_[k], settings_.adhesion->activation,
-                                         {false, false, false, true});
-        ++stats_.links_exhausted;
-      }
-    }
-    stats_.links_active = 0;
-    double area = 0.0, remaining = 0.0;
-    stats_.bond_damage = 0.0;
-    double strength_area = 0.0, force_cap = 0.0;
-    for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
-      if (link_state_[k] != LinkState::active) continue;
-      ++stats_.links_active;
-      const std::optional<double> sc = link_params(static_cast<int>(k)).sigma_c;
-      strength_area += (sc ? *sc : 0.0) * link_area_[k];
-      force_cap += sc ? *sc * link_area_[k] : std::numeric_limits<double>::infinity();
-      if (settings_.adhesion->D_adh_max) {
-        stats_.bond_damage =
-            std::max(stats_.bond_damage, link_damage_[k] / *settings_.adhesion->D_adh_max);
-      }
-      area += link_area_[k];
-      remaining += std::max(work_budget(*settings_.adhesion, link_area_[k]) - link_work_[k], 0.0);
-    }
-    stats_.bonded_area = area * scale();
-    stats_.bond_strength = area > 0.0 ? strength_area / area : 0.0;
-    stats_.bond_force = force_cap * scale();
-    stats_.bond_energy = remaining * scale();
-    stats_.max_bonded_area = std::max(stats_.max_bonded_area, stats_.bonded_area);
-    stats_.max_links_active = std::max(stats_.max_links_active, stats_.links_active);
-  }
+  if (!pairs.empty()) solve_pairs(nodes, mask, pairs, dt, bodies, sph);
+  if (adhesive) summarise_links(pairs);
 }
 
 void ContactInterface::limit_pushout(const std::vector<FeBody>& bodies) {

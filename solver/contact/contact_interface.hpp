@@ -221,6 +221,34 @@ class ContactInterface {
   void correct_positions(NodeSet& nodes, const std::vector<DetectedPair>& pairs,
                          const ContactSolution& sol, double dt);
   double scale() const;
+  // The stages of lagrange_step once pairs are found: the problem, its
+  // solve, the links' charge, the update of the nodes and the books.
+  void solve_pairs(NodeSet& nodes, const std::vector<std::uint8_t>& mask,
+                   std::vector<DetectedPair>& pairs, double dt, const std::vector<FeBody>& bodies,
+                   const std::vector<SphBody>& sph);
+  // The global node of pair i's slave (either pass).
+  int pair_slave_node(const std::vector<DetectedPair>& pairs, std::size_t i) const;
+  void warm_start(const std::vector<DetectedPair>& pairs, double dt);
+  // Rows of the active links, with their tension bound and held opening.
+  std::vector<std::size_t> link_rows(const std::vector<DetectedPair>& pairs, double dt);
+  // Budget charge of the links (cohesive_law.hpp): per link, the opening
+  // rate at the start of the step (link_rate_), the rate without its own
+  // impulse g_free, its inverse mass h and the compliance of both sides give
+  // the work I (g_prev + g_after) / 2 and the stored energy c F^2 / 2; a link
+  // whose budget runs out this step keeps only the impulse that spends it
+  // exactly, and the others are solved again (into sol) with that impulse
+  // fixed.
+  void charge_links(const std::vector<DetectedPair>& pairs, const std::vector<std::size_t>& links,
+                    ContactSolution& sol, double dt, const std::vector<FeBody>& bodies,
+                    const std::vector<SphBody>& sph);
+  void apply_solution(NodeSet& nodes, const std::vector<DetectedPair>& pairs,
+                      const ContactSolution& sol, double dt);
+  double contact_work(const std::vector<DetectedPair>& pairs, const ContactSolution& sol,
+                      const std::vector<Vec3>& v_new) const;
+  void record_pair_states(const std::vector<DetectedPair>& pairs, const ContactSolution& sol,
+                          const std::vector<Vec3>& v_new);
+  // Links lost beyond the search range, and the bond's totals in stats_.
+  void summarise_links(const std::vector<DetectedPair>& pairs);
   // Penalty: the soft-constraint spring of pair i (ContactSettings), N/m.
   double soft_penalty_stiffness(std::size_t i, const Vec3& normal, double dt) const;
   // Link state changes before the solve (activation, erosion, first touch)

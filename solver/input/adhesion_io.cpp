@@ -21,9 +21,10 @@ AdhesionParams adhesion_from_json(const json& j) {
   }
   p.averaging_length = j.value("averaging_length", k_default_averaging_length);
   if (const auto a = j.find("activation"); a != j.end()) {
-    const std::string rule = a->value("rule", std::string("none"));
-    p.activation = rule == "yield-drop" ? ActivationRule::yield_drop : ActivationRule::none;
+    p.activation =
+        parse<ActivationRule>(a->value("rule", std::string("none"))).value_or(ActivationRule::none);
     p.yield_drop = a->value("drop_percent", 0.0) / 100.0;
+    p.homologous_temperature = a->value("homologous_temperature", 1.0);
     p.sides = a->value("sides", std::string("either")) == "both" ? ActivationSides::both
                                                                  : ActivationSides::either;
   }
@@ -31,9 +32,12 @@ AdhesionParams adhesion_from_json(const json& j) {
 }
 
 json adhesion_to_json(const AdhesionParams& p) {
-  json activation{{"rule", p.activation == ActivationRule::yield_drop ? "yield-drop" : "none"},
+  json activation{{"rule", std::string(to_string(p.activation))},
                   {"drop_percent", p.yield_drop * 100.0},
                   {"sides", p.sides == ActivationSides::both ? "both" : "either"}};
+  if (p.activation == ActivationRule::temperature) {
+    activation["homologous_temperature"] = p.homologous_temperature;
+  }
   return {{"G_c", p.G_c},
           {"sigma_c", p.cap_at_flow_stress ? json("flow-stress")
                       : p.sigma_c          ? json(*p.sigma_c)

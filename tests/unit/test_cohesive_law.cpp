@@ -14,6 +14,13 @@
 namespace splat {
 namespace {
 
+// A side whose rate-free yield stress is sigma of a peak `peak` (Pa).
+InterfaceSideState yielded(double sigma, double peak) {
+  InterfaceSideState s;
+  s.yield_ratio = sigma / peak;
+  return s;
+}
+
 AdhesionParams yield_drop_params(double drop, ActivationSides sides) {
   AdhesionParams p;
   p.G_c = 0.2;
@@ -43,8 +50,8 @@ struct TwoMasses {
 };
 
 TEST(cohesive_law, activation_either_and_both_sides) {
-  const SideYield dropped{69.0e6, 100.0e6};  // 31 % below its peak
-  const SideYield steady{95.0e6, 100.0e6};   // 5 % below
+  const InterfaceSideState dropped = yielded(69.0e6, 100.0e6);  // 31 % below its peak
+  const InterfaceSideState steady = yielded(95.0e6, 100.0e6);   // 5 % below
   AdhesionParams either = yield_drop_params(0.30, ActivationSides::either);
   AdhesionParams both = yield_drop_params(0.30, ActivationSides::both);
   EXPECT_TRUE(activation_met(either, dropped, steady));
@@ -54,14 +61,34 @@ TEST(cohesive_law, activation_either_and_both_sides) {
   EXPECT_FALSE(activation_met(both, steady, dropped));
   EXPECT_TRUE(activation_met(both, dropped, dropped));
   // The threshold itself counts as a drop: sigma_y <= (1 - x) peak.
-  EXPECT_TRUE(side_yield_dropped(either, SideYield{70.0e6, 100.0e6}));
-  EXPECT_FALSE(side_yield_dropped(either, SideYield{70.1e6, 100.0e6}));
+  EXPECT_TRUE(side_activated(either, yielded(70.0e6, 100.0e6)));
+  EXPECT_FALSE(side_activated(either, yielded(70.1e6, 100.0e6)));
   // A rigid side never drops: `either` rests on the other side, `both` never holds.
-  EXPECT_TRUE(activation_met(either, rigid_side, dropped));
-  EXPECT_FALSE(activation_met(both, rigid_side, dropped));
+  EXPECT_TRUE(activation_met(either, InterfaceSideState{}, dropped));
+  EXPECT_FALSE(activation_met(both, InterfaceSideState{}, dropped));
   // Rule none: always met, whatever the yield stresses.
   AdhesionParams none;
   EXPECT_TRUE(activation_met(none, steady, steady));
+}
+
+TEST(cohesive_law, activation_on_the_interface_temperature) {
+  AdhesionParams p;
+  p.activation = ActivationRule::temperature;
+  p.homologous_temperature = 0.6;
+  InterfaceSideState cool, hot;
+  cool.homologous_temperature = 0.59;
+  hot.homologous_temperature = 0.6;  // the threshold itself activates
+  EXPECT_FALSE(activation_met(p, cool, cool));
+  EXPECT_TRUE(activation_met(p, hot, cool));
+  EXPECT_TRUE(activation_met(p, cool, hot));
+  p.sides = ActivationSides::both;
+  EXPECT_FALSE(activation_met(p, hot, cool));
+  EXPECT_TRUE(activation_met(p, hot, hot));
+  // A side without material never heats; a softened but cool side does not
+  // activate on temperature.
+  EXPECT_FALSE(activation_met(p, InterfaceSideState{}, hot));
+  p.sides = ActivationSides::either;
+  EXPECT_FALSE(activation_met(p, yielded(10e6, 100e6), cool));
 }
 
 TEST(cohesive_law, erosion_on_either_side_only_with_a_limit) {
@@ -102,9 +129,9 @@ TEST(cohesive_law, static_peak_does_not_see_the_rate_factor) {
   update_point(m, mc, sw, st, -d, 1.0, 1e-10, 1e-3);    // elastic unloading
   const AdhesionParams p = yield_drop_params(0.2, ActivationSides::either);
   EXPECT_DOUBLE_EQ(st.sigma_y_static_peak, st.sigma_y_static);  // hardening only, no drop
-  EXPECT_FALSE(side_yield_dropped(p, {st.sigma_y_static, st.sigma_y_static_peak}));
+  EXPECT_FALSE(side_activated(p, yielded(st.sigma_y_static, st.sigma_y_static_peak)));
   // The rate-dependent peak would have faked a > 20 % drop.
-  EXPECT_TRUE(side_yield_dropped(p, {st.sigma_y_static, st.sigma_y_peak}));
+  EXPECT_TRUE(side_activated(p, yielded(st.sigma_y_static, st.sigma_y_peak)));
 }
 
 // Two pairs through every transition. Pair A (yield-drop, either side):
@@ -119,7 +146,7 @@ TEST(cohesive_law, link_state_transitions_on_a_two_pair_toy) {
     double work = 0.0;
   };
   Pair a, b;
-  const SideYield fresh{100e6, 100e6}, soft{60e6, 100e6};
+  const InterfaceSideState fresh = yielded(100e6, 100e6), soft = yielded(60e6, 100e6);
 
   // Step 1: neither touches.
   a.state = next_link_state(a.state, p.activation, {false, false, false, false});

@@ -11,6 +11,9 @@
 //    velocity of an elastic sphere falls as the stress cap sigma_c rises and
 //    reaches a plateau, the uncapped (Griffith) value, once the cap no longer
 //    binds.
+//  - activation_and_erosion_on_a_plastic_impact, activation_on_the_interface_
+//    temperature: the yield-drop and temperature rules against the states the
+//    run's own elements reached.
 //
 // Scale. The model is scale-free except for G_c (lengths x s is the same as
 // G_c / s; the link compliance h / (M A) scales as 1/s, so the stored-energy
@@ -40,6 +43,7 @@
 #include "solver/core/simulation.hpp"
 #include "solver/input/scene_io.hpp"
 #include "solver/input/schema.hpp"
+#include "solver/material/strength_model.hpp"
 #include "support/scene_runs.hpp"
 
 namespace splat {
@@ -244,6 +248,58 @@ TEST(AdhesionImpact, activation_and_erosion_on_a_plastic_impact) {
   std::printf("D_adh_max 5e-4 with damage: %lld eroded, %lld activated, %lld active\n",
               eroded.links_eroded, eroded.links_activated, eroded.links_active);
   EXPECT_GT(eroded.links_eroded, 0);
+}
+
+// The temperature rule: a link activates once T / T_melt of a side at its
+// node reaches the threshold. Without heat conduction a point's temperature
+// only rises, so the hottest element at the end bounds what any node read:
+// a threshold above it activates nothing, and thresholds below the heated
+// interface activate links, more of them the lower the threshold.
+TEST(AdhesionImpact, activation_on_the_interface_temperature) {
+  json base = scene_file("elastic_sphere_bounce_axisym");
+  for (json& b : base["bodies"]) {
+    b["material"] = "al-thesis";
+    b["switches"] = {{"damage", false}};
+    b.erase("hourglass");
+  }
+  base["bodies"][0]["initial"]["velocity"] = {0, 0, -300.0};
+  base["time"]["end_time"] = 3e-8;
+  base.erase("output");
+  double hottest = 0.0, coldest = 1.0;  // T / T_melt over all elements at the end
+  auto run = [&](double threshold) {
+    json doc = base;
+    doc["interactions"][0]["adhesion"] = {
+        {"G_c", 0.02},
+        {"averaging_length", 0.0},
+        {"activation", {{"rule", "temperature"}, {"homologous_temperature", threshold}}}};
+    const LoadedScene loaded = read_scene(doc);
+    SimulationOptions options;
+    options.threads = 1;
+    Simulation sim(loaded.scene, loaded.resolved, options);
+    const RunSummary s = sim.run();
+    EXPECT_EQ(s.outcome, RunOutcome::finished) << s.reason;
+    for (const FeBody& b : sim.bodies()) {
+      const double T_melt = strength_references(b.material.strength).T_melt;
+      for (const PointState& st : b.state) {
+        hottest = std::max(hottest, st.T / T_melt);
+        coldest = std::min(coldest, st.T / T_melt);
+      }
+    }
+    return s.interfaces.at(0).links_activated;
+  };
+  const long long above = run(1.0);
+  const double T0 = coldest, T1 = hottest;
+  std::printf("T / T_melt from %.4f to %.4f\n", T0, T1);
+  ASSERT_GT(T1, T0 + 0.01);  // the impact heats the interface
+  const long long just_above = run(T1 + 1e-3);
+  const long long mid = run(T0 + 0.5 * (T1 - T0));
+  const long long low = run(T0 + 0.1 * (T1 - T0));
+  std::printf("links activated at T / T_melt %.4f: %lld, %.4f: %lld, %.4f: %lld\n", T1 + 1e-3,
+              just_above, T0 + 0.5 * (T1 - T0), mid, T0 + 0.1 * (T1 - T0), low);
+  EXPECT_EQ(above, 0);
+  EXPECT_EQ(just_above, 0);
+  EXPECT_GT(mid, 0);
+  EXPECT_GT(low, mid);
 }
 
 }  // namespace
