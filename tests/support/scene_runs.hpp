@@ -25,6 +25,18 @@ inline RunSummary run_scene(const nlohmann::json& doc) {
   return sim.run();
 }
 
+// The same, handing the simulation (its final state) and the summary to
+// `inspect`.
+template <class Inspect>
+void run_scene_and_inspect(const nlohmann::json& doc, Inspect&& inspect) {
+  const LoadedScene loaded = read_scene(doc);
+  SimulationOptions options;
+  options.threads = 1;
+  Simulation sim(loaded.scene, loaded.resolved, options);
+  const RunSummary s = sim.run();
+  inspect(sim, s);
+}
+
 struct CommandOutput {
   int code = -1;  // exit code, -1 when the command could not start or was killed
   std::string stdout_text;
