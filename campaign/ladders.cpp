@@ -152,10 +152,9 @@ std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, doubl
 // side): the coarse velocities nearest to 2, 4, 8, 16, ... times `unit` (m/s)
 // beyond the bracket on that side, up to the next coarse stick (another
 // interval's territory), those the fine level has not run. A refined mesh
-// can stick well below a coarse edge with rebounds in between (FE Al/Al, 16
-// across: sticks at 775 and 800 m/s, rebounds at 825-900, under an 8-across
-// edge at 884 m/s): following the edge from the bracket stops at the first
-// rebound.
+// can stick well below a coarse edge with rebounds in between (a measured
+// case: docs/design.md, "Resolution ladders"): following the edge from the
+// bracket stops at the first rebound.
 std::vector<double> island_probes(const SeedContext& c, double lo, double hi, Verdict below,
                                   const std::vector<Classified>& coarse, double unit) {
   const bool down = below == Verdict::rebound;  // the rebound side is below a lower edge
