@@ -94,12 +94,6 @@ struct ExpandedImpact {
   ImpactModelChoice choice;
 };
 
-// `doc` is a scene document with a `particle_impact` block and no bodies,
-// already valid against the scene schema; its materials take every form a
-// body's do, files relative to `base_dir` (the scene file's folder; empty =
-// the working folder). Throws InputError naming the field when the block
-// cannot be expanded (unknown material, adhesion asked on a rigid
-// substrate, ...).
 // Reads the block of `doc` (materials resolved as a body's, files relative to
 // `base_dir`). Throws InputError naming the field of a material that cannot
 // be read.
@@ -111,6 +105,12 @@ ImpactRequest read_impact_request(const nlohmann::json& doc,
 // naming the field when the request contradicts itself.
 ImpactModelChoice choose_model(const ImpactRequest& request);
 
+// `doc` is a scene document with a `particle_impact` block and no bodies,
+// already valid against the scene schema; its materials take every form a
+// body's do, files relative to `base_dir` (the scene file's folder; empty =
+// the working folder). Throws InputError naming the field when the block
+// cannot be expanded (unknown material, adhesion asked on a rigid
+// substrate, ...).
 ExpandedImpact expand_particle_impact(const nlohmann::json& doc,
                                       const std::filesystem::path& base_dir = {});
 
