@@ -588,12 +588,13 @@ std::vector<MaterialSample> fe_samples(const FeBody& b, const NodeSet& nodes, co
 std::vector<MaterialSample> sph_samples(const SphBody& b, const NodeSet& nodes, const Vec3& lo,
                                         const Vec3& hi) {
   std::vector<MaterialSample> out;
+  const double T_melt = melt_temperature(b.material);
   for (std::size_t i = 0; i < b.size(); ++i) {
     const Vec3& x = nodes.x[b.node_begin + i];
     if (!b.active[i] || (x.array() < lo.array()).any() || (x.array() > hi.array()).any()) {
       continue;
     }
-    out.push_back({x, b.volume0[i], particle_state(b, static_cast<int>(b.node_begin + i))});
+    out.push_back({x, b.volume0[i], side_state(b.state[i], T_melt)});
   }
   return out;
 }
