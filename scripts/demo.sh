@@ -26,5 +26,6 @@ echo "G_c = 0.1, 0.2, 0.4 J/m^2 (M = 1 kg, m = 2 kg, A = 1 m^2), whatever the ca
 echo "k = 0 rows above. With k = 0.5 N/m the cap matters."
 echo
 # The same machinery on real impacts: critical velocity of Al on Al
-# (axisymmetric FE, 8 elements across; 29 jobs, a few seconds).
+# (axisymmetric FE, 8 elements across, links activated on the interface
+# temperature; 42 jobs, a few seconds).
 "$splat" sweep "$here/campaigns/demo_impact_al_al.json" --db "$out/campaign.db" --workers 2

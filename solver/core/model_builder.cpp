@@ -24,19 +24,6 @@ std::string body_pointer(std::size_t b) {
   return "/bodies/" + std::to_string(b);
 }
 
-// Elements along [a, b] so that the element at the focus is about h and sizes
-// grow by `ratio` per element away from it (uniform when ratio is 1).
-int graded_count(double a, double b, double h, double focus, double ratio) {
-  const double length = b - a;
-  if (ratio <= 1.0 + 1e-12) return std::max(1, static_cast<int>(std::lround(length / h)));
-  auto side = [&](double l) {
-    if (l <= 0.0) return 0;
-    return static_cast<int>(std::ceil(std::log1p(l * (ratio - 1.0) / h) / std::log(ratio)));
-  };
-  const double f = std::clamp(focus, a, b);
-  return std::max(1, side(f - a) + side(b - f));
-}
-
 struct Resolution {
   int across = 0;  // elements across the characteristic length
   double h = 0.0;  // element size, m
@@ -72,6 +59,8 @@ Grading to_grading(const GradingSpec& g, bool axisymmetric) {
   out.ratio = g.enabled ? g.ratio : 1.0;
   // Scene coordinates are (x, y, z); an axisymmetric focus is (r, z).
   out.focus = axisymmetric ? Vec3(g.focus.x(), g.focus.z(), 0.0) : g.focus;
+  out.uniform_extent =
+      axisymmetric ? Vec3(g.uniform_extent.x(), g.uniform_extent.z(), 0.0) : g.uniform_extent;
   return out;
 }
 
@@ -103,9 +92,9 @@ AxisymMesh axisym_mesh(const BodySpec& b, std::size_t index) {
       const double lc = g.type == GeometryType::cylinder ? g.radius : std::min(g.radius, lz);
       const Resolution r = resolution(b, lc);
       const double ratio = graded ? grading.ratio : 1.0;
-      const int nr = graded_count(0.0, g.radius, r.h, grading.focus.x(), ratio);
-      const int nz = graded_count(g.z_min, g.z_max, r.h, grading.focus.y(), ratio);
-      return axisym_rectangle(g.radius, g.z_min, g.z_max, nr, nz, grading);
+      const Vec3& u = grading.uniform_extent;
+      return axisym_rectangle(axis_points(0.0, g.radius, r.h, grading.focus.x(), ratio, u.x()),
+                              axis_points(g.z_min, g.z_max, r.h, grading.focus.y(), ratio, u.y()));
     }
     case GeometryType::box:
       break;
@@ -124,16 +113,17 @@ HexMesh hex_mesh(const BodySpec& b, std::size_t index) {
     }
     case GeometryType::cylinder: {
       const Resolution r = resolution(b, g.radius);
-      const int nz = graded_count(g.z_min, g.z_max, r.h, grading.focus.z(), ratio);
+      const int nz =
+          int(axis_points(g.z_min, g.z_max, r.h, grading.focus.z(), ratio, 0.0).size()) - 1;
       return hex_cylinder(g.radius, g.z_min, g.z_max, r.across, nz, to_sector(b.sector), grading);
     }
     case GeometryType::box: {
       const Vec3 size = g.hi - g.lo;
       const Resolution r = resolution(b, size.minCoeff());
-      const int nx = graded_count(g.lo.x(), g.hi.x(), r.h, grading.focus.x(), ratio);
-      const int ny = graded_count(g.lo.y(), g.hi.y(), r.h, grading.focus.y(), ratio);
-      const int nz = graded_count(g.lo.z(), g.hi.z(), r.h, grading.focus.z(), ratio);
-      return hex_box(g.lo, g.hi, nx, ny, nz, grading);
+      const Vec3& u = grading.uniform_extent;
+      return hex_box(axis_points(g.lo.x(), g.hi.x(), r.h, grading.focus.x(), ratio, u.x()),
+                     axis_points(g.lo.y(), g.hi.y(), r.h, grading.focus.y(), ratio, u.y()),
+                     axis_points(g.lo.z(), g.hi.z(), r.h, grading.focus.z(), ratio, u.z()));
     }
     case GeometryType::half_disc:
     case GeometryType::rectangle:

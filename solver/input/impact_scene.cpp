@@ -20,9 +20,19 @@ using nlohmann::json;
 
 const std::string k_base = "/particle_impact";  // the block's JSON pointer
 constexpr double k_pi = std::numbers::pi;
-constexpr double k_gap = 1e-3;                   // initial gap / particle radius, -
-constexpr double k_grading_ratio = 1.15;         // substrate element growth per element, -
-constexpr double k_size_velocity = 250.0;        // m/s per extra particle radius of substrate
+constexpr double k_gap = 1e-3;             // initial gap / particle radius, -
+constexpr double k_grading_ratio = 1.15;   // substrate element growth per element, -
+constexpr double k_size_velocity = 250.0;  // m/s per extra particle radius of substrate
+// FE substrate zone at the particle's element size about the impact point:
+// radius R (1.5 + v / 1000 m/s), depth R (0.5 + v / 1000 m/s), covering the
+// contact and the lip it raises (FE Al/Al, 16 across: lip at 1.45 R at
+// 700 m/s, 1.7 R at 1200 m/s) and the crater below it, so that refining the
+// particle refines the interface on both sides; substrate elements larger
+// than the particle's at the rim let its rim cut through them
+// (docs/design.md, "Model choice").
+constexpr double k_uniform_radius_base = 1.5;    // -
+constexpr double k_uniform_depth_base = 0.5;     // -
+constexpr double k_uniform_velocity = 1000.0;    // m/s per extra particle radius
 constexpr double k_rigid_factor = 3.0;           // substrate yield / particle flow stress for rigid
 constexpr double k_hourglass_coefficient = 0.1;  // stiffness-form hourglass coefficient, -
 constexpr double k_erosion_dt_fraction = 0.05;   // default geometric erosion, of h / c_p, -
@@ -412,9 +422,16 @@ json substrate_body(const ImpactRequest& r, const ImpactModelChoice& c, const Bo
     if (!block_sph.contains("lattice")) block_sph["lattice"] = "cubic";
     s["discretization"] = {{"type", "sph"}, {"element_size", h}, {"sph", block_sph}};
   } else {
-    s["discretization"] = {{"type", is_axisymmetric(c.model) ? "fe-axisym" : "fe-hex"},
-                           {"element_size", h},
-                           {"grading", {{"focus", vec(0, 0, 0)}, {"ratio", k_grading_ratio}}}};
+    const double R = r.radius, grow = r.velocity / k_uniform_velocity;
+    const double u_r = std::min(S, R * (k_uniform_radius_base + grow));
+    const double u_z = std::min(S, R * (k_uniform_depth_base + grow));
+    s["discretization"] = {
+        {"type", is_axisymmetric(c.model) ? "fe-axisym" : "fe-hex"},
+        {"element_size", h},
+        {"grading",
+         {{"focus", vec(0, 0, 0)},
+          {"ratio", k_grading_ratio},
+          {"uniform_extent", vec(u_r, is_axisymmetric(c.model) ? 0.0 : u_r, u_z)}}}};
     s["hourglass"] = num.hourglass;
     s["artificial_viscosity"] = num.viscosity;
     s["erosion"] = num.erosion;

@@ -392,6 +392,16 @@ void parse_discretization(const json& d, BodySpec& b, const std::string& p, Prob
     if (axisym && b.grading.focus.y() != 0.0) {
       problems.add(fp + "/1", "must be 0 for fe-axisym bodies: [r, 0, z] (m)");
     }
+    if (const auto u = g->find("uniform_extent"); u != g->end()) {
+      const std::string up = dp + "/grading/uniform_extent";
+      b.grading.uniform_extent = vec3(*u);
+      if ((b.grading.uniform_extent.array() < 0.0).any()) {
+        problems.add(up, "must be >= 0 along every axis (m)");
+      }
+      const bool block =
+          b.geometry.type == GeometryType::rectangle || b.geometry.type == GeometryType::box;
+      if (!block) problems.add(up, "is for rectangle and box geometries only");
+    }
   }
 }
 
@@ -480,6 +490,9 @@ json body_to_json(const BodySpec& b) {
   }
   if (b.grading.enabled) {
     d["grading"] = {{"focus", to_json_vec(b.grading.focus)}, {"ratio", b.grading.ratio}};
+    if (!b.grading.uniform_extent.isZero()) {
+      d["grading"]["uniform_extent"] = to_json_vec(b.grading.uniform_extent);
+    }
   }
   return {
       {"name", b.name},

@@ -295,6 +295,61 @@ std::vector<double> graded_points(double a, double b, int n, double focus, doubl
   return x;
 }
 
+namespace {
+
+// Cells over a length l growing by `ratio` from a first cell of at most h
+// (uniform cells of about h when ratio is 1).
+int growing_cells(double l, double h, double ratio) {
+  if (l <= 0.0) return 0;
+  if (ratio <= 1.0 + 1e-12) return std::max(1, static_cast<int>(std::lround(l / h)));
+  return std::max(1,
+                  static_cast<int>(std::ceil(std::log1p(l * (ratio - 1.0) / h) / std::log(ratio))));
+}
+
+void require_increasing(const char* where, const char* name, const std::vector<double>& x) {
+  if (x.size() < 2) fail(where, std::string(name) + " needs at least 2 points");
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    require_finite(where, name, x[i]);
+    if (i > 0 && !(x[i] > x[i - 1])) fail(where, std::string(name) + " must increase");
+  }
+}
+
+}  // namespace
+
+std::vector<double> axis_points(double a, double b, double h, double focus, double ratio,
+                                double uniform) {
+  const char* where = "axis_points";
+  require_interval(where, "a", a, "b", b);
+  require_positive(where, "h", h);
+  if (!(ratio >= 1.0) || !std::isfinite(ratio))
+    fail(where, "ratio must be finite and >= 1 (got " + num(ratio) + ")");
+  if (std::isnan(focus)) fail(where, "focus must not be NaN");
+  if (!(uniform >= 0.0) || !std::isfinite(uniform))
+    fail(where, "uniform must be finite and >= 0 (got " + num(uniform) + ")");
+  const double f = std::clamp(focus, a, b);
+  if (uniform == 0.0) {
+    const int n =
+        ratio <= 1.0 + 1e-12
+            ? growing_cells(b - a, h, 1.0)
+            : std::max(1, growing_cells(f - a, h, ratio) + growing_cells(b - f, h, ratio));
+    return graded_points(a, b, n, f, ratio);
+  }
+  double lo = std::max(a, f - uniform), hi = std::min(b, f + uniform);
+  if (lo - a < 0.5 * h) lo = a;
+  if (b - hi < 0.5 * h) hi = b;
+  const double lr = std::log(ratio);
+  std::vector<double> x;
+  const int n_left = growing_cells(lo - a, h, ratio);
+  for (int i = n_left; i > 0; --i) x.push_back(lo - (lo - a) * geometric_fraction(i, n_left, lr));
+  const int n_core = std::max(1, static_cast<int>(std::lround((hi - lo) / h)));
+  for (int i = 0; i < n_core; ++i) x.push_back(lo + (hi - lo) * double(i) / double(n_core));
+  const int n_right = growing_cells(b - hi, h, ratio);
+  for (int i = 0; i < n_right; ++i) x.push_back(hi + (b - hi) * geometric_fraction(i, n_right, lr));
+  x.push_back(b);
+  x.front() = a;
+  return x;
+}
+
 AxisymMesh axisym_half_disc(double radius, double z_centre, int elements_across_radius) {
   const char* where = "axisym_half_disc";
   require_positive(where, "radius", radius);
@@ -324,6 +379,15 @@ AxisymMesh axisym_rectangle(double r_max, double z_min, double z_max, int n_r, i
       uniform_or_graded(0.0, r_max, n_r, grading.enabled, grading.focus.x(), grading.ratio);
   const std::vector<double> z =
       uniform_or_graded(z_min, z_max, n_z, grading.enabled, grading.focus.y(), grading.ratio);
+  return axisym_rectangle(r, z);
+}
+
+AxisymMesh axisym_rectangle(const std::vector<double>& r, const std::vector<double>& z) {
+  const char* where = "axisym_rectangle";
+  require_increasing(where, "r", r);
+  require_increasing(where, "z", z);
+  if (r.front() != 0.0) fail(where, "r must start on the axis (0)");
+  const int n_r = int(r.size()) - 1, n_z = int(z.size()) - 1;
   AxisymMesh m;
   const int nr1 = n_r + 1;
   m.nodes.reserve(std::size_t(nr1) * (n_z + 1));
@@ -450,6 +514,16 @@ HexMesh hex_box(Vec3 lo, Vec3 hi, int nx, int ny, int nz, const Grading& grading
       uniform_or_graded(lo.y(), hi.y(), ny, g, grading.focus.y(), grading.ratio);
   const std::vector<double> z =
       uniform_or_graded(lo.z(), hi.z(), nz, g, grading.focus.z(), grading.ratio);
+  return hex_box(x, y, z);
+}
+
+HexMesh hex_box(const std::vector<double>& x, const std::vector<double>& y,
+                const std::vector<double>& z) {
+  const char* where = "hex_box";
+  require_increasing(where, "x", x);
+  require_increasing(where, "y", y);
+  require_increasing(where, "z", z);
+  const int nx = int(x.size()) - 1, ny = int(y.size()) - 1, nz = int(z.size()) - 1;
   HexMesh m;
   const std::size_t n_nodes = std::size_t(nx + 1) * (ny + 1) * (nz + 1);
   m.nodes.reserve(n_nodes);

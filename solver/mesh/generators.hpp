@@ -26,11 +26,14 @@ namespace splat {
 
 // Element size grows geometrically away from `focus` by `ratio` per element
 // along each axis separately (ratio >= 1; 1 = uniform). For 2D meshes the
-// focus is (r, z) = (focus.x, focus.y). Ignored unless `enabled`.
+// focus is (r, z) = (focus.x, focus.y). Within `uniform_extent` of the focus
+// along an axis the elements keep the base size; the growth starts beyond.
+// Ignored unless `enabled`.
 struct Grading {
   bool enabled = false;
   Vec3 focus = Vec3::Zero();  // m
   double ratio = 1.0;         // size of an element / size of its neighbour nearer the focus, -
+  Vec3 uniform_extent = Vec3::Zero();  // m, half-widths of the uniform zone per axis
 };
 
 // n + 1 points from a to b (both exact). Element sizes grow by `ratio` per
@@ -42,6 +45,15 @@ struct Grading {
 // element snaps to that end, so it never creates a sliver.
 std::vector<double> graded_points(double a, double b, int n, double focus, double ratio);
 
+// Points from a to b (both exact) for elements of about size h at the focus:
+// uniform (size h, to rounding) within `uniform` of the focus, then growing
+// by `ratio` per element, the first grown element at most h. With `uniform`
+// 0 this is graded_points with the count that makes the element at the focus
+// about h. An outer part shorter than h / 2 joins the uniform zone, so no
+// sliver is made at its end.
+std::vector<double> axis_points(double a, double b, double h, double focus, double ratio,
+                                double uniform);
+
 // Axisymmetric sphere: the half-disc r >= 0 of radius `radius` about
 // (0, z_centre). Tags: axis r = 0 boundary_x_min, arc boundary_curved.
 AxisymMesh axisym_half_disc(double radius, double z_centre, int elements_across_radius);
@@ -50,6 +62,8 @@ AxisymMesh axisym_half_disc(double radius, double z_centre, int elements_across_
 // Tags: r = 0 x_min (axis), r = r_max x_max, z_min y_min, z_max y_max.
 AxisymMesh axisym_rectangle(double r_max, double z_min, double z_max, int n_r, int n_z,
                             const Grading& grading);
+// The same block on given node lines: r from 0 to r_max, z increasing.
+AxisymMesh axisym_rectangle(const std::vector<double>& r, const std::vector<double>& z);
 
 // Part of a round body kept, relative to its centre (axis).
 enum class Sector {
@@ -64,6 +78,9 @@ HexMesh hex_sphere(double radius, Vec3 centre, int elements_across_radius, Secto
 
 // Box [lo, hi] with nx x ny x nz cells. Faces tagged x_min ... z_max.
 HexMesh hex_box(Vec3 lo, Vec3 hi, int nx, int ny, int nz, const Grading& grading);
+// The same box on given node planes, each list increasing.
+HexMesh hex_box(const std::vector<double>& x, const std::vector<double>& y,
+                const std::vector<double>& z);
 
 // Cylinder of `radius` along z through x = y = 0 from z_min to z_max: a 2D
 // O-grid section (square core + four blended blocks) extruded in n_z layers,

@@ -43,6 +43,9 @@ struct GradingSpec {
   bool enabled = false;
   Vec3 focus = Vec3::Zero();  // m, scene coordinates (axisymmetric: (r, 0, z))
   double ratio = 1.0;         // element size growth per element away from the focus, -
+  // Half-widths about the focus within which elements keep the base size,
+  // per axis, m (axisymmetric: (r, 0, z)); zero: growth from the focus.
+  Vec3 uniform_extent = Vec3::Zero();
 };
 
 enum class HourglassType { viscous, stiffness };

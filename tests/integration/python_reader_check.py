@@ -1,7 +1,7 @@
 """python/splat_results.py on a real run and a real store (ctest
 integration.python_reader; needs python3-h5py, python3-numpy).
 
-- read_run on `splat run scenes/impact_al_al.json`: the histories and their
+- read_run on `splat run scenes/impact_al_al_temperature.json`: the histories and their
   units, the figures of the summary as root attributes, the snapshots in
   time order with the bodies' coordinates and fields, and the histories
   agree with the summary the run printed (end time, particle velocity);
@@ -27,13 +27,13 @@ import numpy as np
 def check_run(splat, source, work, sr):
     out = os.path.join(work, "run")
     shutil.rmtree(out, ignore_errors=True)
-    scene = os.path.join(source, "scenes", "impact_al_al.json")
-    # 900 m/s: above the scene's critical velocity, a stick to read.
+    scene = os.path.join(source, "scenes", "impact_al_al_temperature.json")
+    # 600 m/s: above the scene's critical velocity, a stick to read.
     p = subprocess.run([splat, "run", scene, "--threads", "1", "--out", out, "--json",
-                        "--set", "/particle_impact/velocity=900"],
+                        "--set", "/particle_impact/velocity=600"],
                        capture_output=True, text=True, check=True)
     summary = json.loads(p.stdout)
-    run = sr.read_run(os.path.join(out, "impact_al_al.h5"))
+    run = sr.read_run(os.path.join(out, "impact_al_al_temperature.h5"))
 
     h = run["histories"]
     assert run["units"]["time"] == "s" and run["units"]["kinetic"] == "J", run["units"]
@@ -45,13 +45,13 @@ def check_run(splat, source, work, sr):
     assert h["time"][-1] == summary["end_time"], (h["time"][-1], summary["end_time"])
     # The particle's final velocity in the histories is the summary's.
     particle = next(b for b in summary["bodies"] if b["name"] == "particle")
-    assert abs(h["particle_vz"][-1] - particle["centroid_velocity"][2]) <= 1e-9 * 900
+    assert abs(h["particle_vz"][-1] - particle["centroid_velocity"][2]) <= 1e-9 * 600
     # The energy at the start: all kinetic.
     assert abs(h["kinetic"][0] / summary["energy"]["initial_total"] - 1) < 1e-12
 
     a = run["attributes"]
     assert a["outcome"] == summary["outcome"] == "stick", (a.get("outcome"), summary["outcome"])
-    assert a["scene_name"] == "impact_al_al"
+    assert a["scene_name"] == "impact_al_al_temperature"
 
     snaps = run["snapshots"]
     assert len(snaps) >= 10, len(snaps)
@@ -85,24 +85,24 @@ def check_store(splat, source, work, sr):
     spec = os.path.join(folder, "campaign.json")
     with open(spec, "w") as f:
         json.dump({"name": "reader", "base_scene": os.path.join(source, "scenes",
-                                                               "impact_al_al.json"),
-                   "velocity": {"values": [100, 900]}, "job": {"time_limit": 120}}, f)
+                                                               "impact_al_al_temperature.json"),
+                   "velocity": {"values": [100, 600]}, "job": {"time_limit": 120}}, f)
     db = os.path.join(folder, "c.db")
     subprocess.run([splat, "sweep", spec, "--db", db], capture_output=True, text=True, check=True)
 
     store = sr.read_store(db)
     assert [c["name"] for c in store["campaigns"]] == ["reader"], store["campaigns"]
     jobs = store["jobs"]
-    assert [j["velocity"] for j in jobs] == [100.0, 900.0], jobs
+    assert [j["velocity"] for j in jobs] == [100.0, 600.0], jobs
     assert all(j["state"] == "succeeded" for j in jobs), [j["state"] for j in jobs]
     assert jobs[1]["outcome"] == "stick", jobs[1]["outcome"]
     assert all(os.path.isabs(j["hdf5_path"]) and os.path.isfile(j["hdf5_path"]) for j in jobs)
     # Campaign jobs keep to histories: no field snapshots unless the base scene asks.
     assert all(not sr.read_run(j["hdf5_path"])["snapshots"] for j in jobs)
-    assert list(store["velocities"][1]) == [100.0, 900.0]
+    assert list(store["velocities"][1]) == [100.0, 600.0]
     assert len(store["windows"]) == 1 and store["windows"][0]["params"] == {}
     w = store["windows"][0]
-    assert w["critical_velocity"] is not None and 100 < w["critical_velocity"] < 900, w
+    assert w["critical_velocity"] is not None and 100 < w["critical_velocity"] < 600, w
     histories = sr.job_histories(db, jobs[1]["hash"])["histories"]
     assert histories["time"][-1] == jobs[1]["summary"]["end_time"]
 

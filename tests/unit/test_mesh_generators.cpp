@@ -451,6 +451,83 @@ TEST(MeshGenerators, graded_points_rejects_bad_arguments) {
   expect_invalid([] { graded_points(0.0, 1.0, 4, NAN, 1.0); }, "focus");
 }
 
+// ---------------------------------------------------------------- axis_points
+
+TEST(MeshGenerators, axis_points_without_uniform_zone_sizes_the_focus_cell_to_h) {
+  const double h = 0.01, ratio = 1.15;
+  for (double focus : {0.0, 0.3, 1.0}) {
+    const auto x = axis_points(0.0, 1.0, h, focus, ratio, 0.0);
+    EXPECT_EQ(x, graded_points(0.0, 1.0, int(x.size()) - 1, focus, ratio)) << focus;
+    const auto s = sizes(x);
+    const auto it = std::lower_bound(x.begin(), x.end(), focus);
+    const std::size_t k = std::min<std::size_t>(std::size_t(it - x.begin()), s.size() - 1);
+    // The cell at the focus is within one growth step of h.
+    EXPECT_LT(s[k], h * ratio * (1.0 + 1e-9)) << focus;
+    EXPECT_GT(s[k], h / (2.0 * ratio + 1.0)) << focus;
+  }
+  const auto u = axis_points(0.0, 1.0, 0.1, 0.5, 1.0, 0.0);
+  ASSERT_EQ(u.size(), 11u);
+  for (double c : sizes(u)) EXPECT_NEAR(c, 0.1, 1e-12);
+}
+
+TEST(MeshGenerators, axis_points_keep_h_in_the_uniform_zone_and_grow_beyond) {
+  // Substrate-like: r from the axis, uniform out to 37.5 um, element 1.5625 um.
+  const double h = 1.5625e-6, ratio = 1.15, a = 0.0, b = 200e-6, u = 37.5e-6;
+  const auto x = axis_points(a, b, h, 0.0, ratio, u);
+  EXPECT_EQ(x.front(), a);
+  EXPECT_EQ(x.back(), b);
+  const auto s = sizes(x);
+  std::size_t core = 0;
+  while (core < x.size() && x[core] < u - 1e-3 * h) ++core;
+  ASSERT_GT(core, 20u);
+  EXPECT_NEAR(x[core], u, 1e-12 * b) << "the zone ends on a node";
+  for (std::size_t i = 0; i < core; ++i) EXPECT_NEAR(s[i], u / double(core), 1e-9 * h);
+  EXPECT_NEAR(s[0], h, 0.5 * h / double(core));
+  // Beyond: a first cell no larger than h, then growth by the ratio.
+  EXPECT_LE(s[core], h * (1.0 + 1e-9));
+  for (std::size_t i = core; i + 1 < s.size(); ++i) EXPECT_NEAR(s[i + 1] / s[i], ratio, 1e-9);
+  // Both sides of an interior focus, the zone clipped at the ends.
+  const auto y = axis_points(-1.0, 1.0, 0.05, 0.2, 1.2, 0.5);
+  for (double c : sizes(y)) EXPECT_GT(c, 0.5 * 0.05);
+  EXPECT_NE(std::find(y.begin(), y.end(), -0.3), y.end());
+  const auto all = axis_points(0.0, 1.0, 0.1, 0.5, 1.2, 10.0);  // zone covers everything
+  ASSERT_EQ(all.size(), 11u);
+  for (double c : sizes(all)) EXPECT_NEAR(c, 0.1, 1e-12);
+}
+
+TEST(MeshGenerators, axis_points_join_a_short_outer_part_instead_of_a_sliver) {
+  const double h = 0.1;
+  // The zone stops 0.03 (< h / 2) short of b: no cell of 0.03 at the end.
+  const auto x = axis_points(0.0, 1.0, h, 0.0, 1.2, 0.97);
+  EXPECT_EQ(x.back(), 1.0);
+  for (double c : sizes(x)) EXPECT_GT(c, 0.5 * h);
+  const auto y = axis_points(0.0, 1.0, h, 0.5, 1.2, 0.46);
+  for (double c : sizes(y)) EXPECT_GT(c, 0.5 * h);
+}
+
+TEST(MeshGenerators, axis_points_rejects_bad_arguments) {
+  expect_invalid([] { axis_points(1.0, 0.0, 0.1, 0.0, 1.1, 0.0); }, "b must be > a");
+  expect_invalid([] { axis_points(0.0, 1.0, 0.0, 0.0, 1.1, 0.0); }, "h must be");
+  expect_invalid([] { axis_points(0.0, 1.0, 0.1, 0.0, 0.9, 0.0); }, "ratio must be");
+  expect_invalid([] { axis_points(0.0, 1.0, 0.1, NAN, 1.1, 0.0); }, "focus");
+  expect_invalid([] { axis_points(0.0, 1.0, 0.1, 0.0, 1.1, -1.0); }, "uniform must be");
+  expect_invalid([] { axis_points(0.0, 1.0, 0.1, 0.0, 1.1, INFINITY); }, "uniform must be");
+}
+
+TEST(MeshGenerators, point_list_blocks_reject_lists_that_do_not_increase) {
+  const std::vector<double> good{0.0, 0.5, 1.0};
+  expect_invalid([&] { axisym_rectangle({0.0, 0.5, 0.5}, good); }, "r must increase");
+  expect_invalid([&] { axisym_rectangle({0.1, 0.5, 1.0}, good); }, "r must start on the axis");
+  expect_invalid([&] { axisym_rectangle(good, {0.0}); }, "z needs at least 2 points");
+  expect_invalid([&] { hex_box(good, good, {0.0, NAN}); }, "z must be finite");
+  expect_invalid([&] { hex_box(good, {1.0, 0.0}, good); }, "y must increase");
+  const HexMesh m = hex_box(good, {0.0, 0.2, 0.3, 1.0}, good);
+  EXPECT_EQ(m.hexes.size(), 12u);
+  const AxisymMesh r = axisym_rectangle(good, {-1.0, 0.0});
+  EXPECT_EQ(r.quads.size(), 2u);
+  EXPECT_NEAR(revolved_volume(r), pi, 1e-12);
+}
+
 // ---------------------------------------------------------------- 2D meshes
 
 TEST(MeshGenerators, half_disc_orientation_tags_and_quality) {

@@ -231,6 +231,25 @@ TEST(SceneIo, axisymmetric_boundary_names_and_grading) {
   expect_violation(doc, "/boundary_conditions/1/on", "bottom");
 }
 
+TEST(SceneIo, grading_uniform_extent_is_read_checked_and_written_back) {
+  json doc = axisym_scene();
+  doc["bodies"][0]["geometry"] = {
+      {"type", "rectangle"}, {"r_max", 1e-3}, {"z_min", 0.0}, {"z_max", 50e-3}};
+  json& g = doc["bodies"][0]["discretization"]["grading"];
+  g = {{"focus", {0, 0, 50e-3}}, {"ratio", 1.1}, {"uniform_extent", {2e-4, 0, 1e-4}}};
+  const LoadedScene loaded = read_scene(doc);
+  EXPECT_EQ(loaded.scene.bodies[0].grading.uniform_extent, Vec3(2e-4, 0, 1e-4));
+  EXPECT_EQ(loaded.resolved["bodies"][0]["discretization"]["grading"]["uniform_extent"],
+            json({2e-4, 0.0, 1e-4}));
+
+  g["uniform_extent"] = {2e-4, 0, -1e-4};
+  expect_violation(doc, "/bodies/0/discretization/grading/uniform_extent/2", ">= 0");
+  g["uniform_extent"] = {2e-4, 0, 1e-4};
+  doc["bodies"][0]["geometry"] = {{"type", "half-disc"}, {"radius", 10e-6}, {"z_centre", 0.0}};
+  expect_violation(doc, "/bodies/0/discretization/grading/uniform_extent",
+                   "rectangle and box geometries only");
+}
+
 TEST(SceneIo, snapshot_count_gives_evenly_spaced_times_ending_at_end_time) {
   json doc = axisym_scene();
   doc["output"] = {{"snapshot_count", 4}};
@@ -661,6 +680,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.grading.enabled, y.grading.enabled);
     EXPECT_EQ(x.grading.focus, y.grading.focus);
     EXPECT_EQ(x.grading.ratio, y.grading.ratio);
+    EXPECT_EQ(x.grading.uniform_extent, y.grading.uniform_extent);
     EXPECT_EQ(x.velocity, y.velocity);
     EXPECT_EQ(x.temperature, y.temperature);
     EXPECT_EQ(x.seed, y.seed);
