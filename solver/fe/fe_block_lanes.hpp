@@ -247,11 +247,11 @@ SPLAT_LANE_INLINE void list_active(const FeBody& body, std::size_t begin, std::s
 
 // Phase (a), after the geometry: with L at mid-step (dt > 0), the
 // Hughes-Winget rotation of st.s, R, tr(D) and the material inputs
-// d_eps = sym(L) dt, J = V / V0, L_c of the group's valid lanes; for dt = 0
-// R = I and tr(D) = 0 (no material update).
+// d_eps = sym(L) dt, J from tr(d_eps) (volume_ratio_after), L_c of the group's valid lanes; for dt
+// = 0 R = I and tr(D) = 0 (no material update).
 template <int W, class Scratch>
-SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][3],
-                                        const Lane<W>& volume, double dt, Scratch& s) {
+SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][3], double dt,
+                                        Scratch& s) {
   using V = Lane<W>;
   if (!(dt > 0.0)) {
     s.lanes_done[g] = false;
@@ -282,7 +282,7 @@ SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][
   V d_eps[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) d_eps[i][j] = dt * D[i][j];
-  const V J_new = volume / element_lanes<W>(body.volume0, s, g);
+  const V J_new = volume_ratio_after(state_lanes<W>(st, &PointState::J), dt * s.tr_D[g]);
   // The material update of the lanes point_update_fast covers, here; the
   // others are listed for update_point_general (phase b). Either way each
   // point gets update_point's bits.
@@ -454,7 +454,7 @@ SPLAT_LANE_INLINE void hex_block_lanes(FeBody& body, const NodeSet& nodes, std::
       for (auto& row : L)
         for (V& c : row) c = V{};
     }
-    kinematics_lanes<W>(body, g, L, volume, dt, s);
+    kinematics_lanes<W>(body, g, L, dt, s);
   }
 
   // (b) material.
@@ -582,7 +582,7 @@ SPLAT_LANE_INLINE void quad_block_lanes(FeBody& body, const NodeSet& nodes, std:
       for (auto& row : L)
         for (V& c : row) c = V{};
     }
-    kinematics_lanes<W>(body, g, L, volume, dt, s);
+    kinematics_lanes<W>(body, g, L, dt, s);
   }
 
   // (b) material.

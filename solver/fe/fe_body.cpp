@@ -185,8 +185,9 @@ inline MaterialStep material_step(FeBody& body, std::size_t e, const Mat3& L, do
     rotate_symmetric_mat3(Q, st.s);
     ms.R << Q[0][0], Q[0][1], Q[0][2], Q[1][0], Q[1][1], Q[1][2], Q[2][0], Q[2][1], Q[2][2];
     const Mat3 D = 0.5 * (L + L.transpose());
-    const PointUpdateResult r = update_point(body.material, body.constants, body.switches, st,
-                                             dt * D, V / body.volume0[e], dt, L_c);
+    const PointUpdateResult r =
+        update_point(body.material, body.constants, body.switches, st, dt * D,
+                     volume_ratio_after(st.J, dt * D.trace()), dt, L_c);
     sums.max_iterations = std::max(sums.max_iterations, r.iterations);
     sums.failed = sums.failed || !r.converged;
     trD = D.trace();

@@ -67,6 +67,19 @@ struct PointState {
   Mat3 cauchy() const { return s - p * Mat3::Identity(); }
 };
 
+// Volume ratio at the end of a step from the strain increment's trace
+// tr = tr(D) dt (mid-step D), the point's own kinematics:
+//   J_new = J_old (2 + tr) / (2 - tr),
+// so that J_mid tr = J_new - J_old exactly and the trapezoidal pressure work
+// of update_point, -J_mid (p_old + p_new) tr / 2, is the EOS's -p dJ. A
+// point's volume changes only with its motion: a position-only contact
+// correction (contact_interface.hpp, correct_positions) that moves element
+// nodes does no work on the material and raises no pressure.
+template <class T>
+T volume_ratio_after(const T& J_old, const T& tr) {
+  return J_old * (2.0 + tr) / (2.0 - tr);
+}
+
 // Initial state at temperature T0 with initial damage D0 (sets sigma_y).
 PointState initial_point_state(const Material& m, const ModelSwitches& sw, double T0, double D0);
 

@@ -223,8 +223,12 @@ TEST(campaign_sweep, a_resolution_field_gives_a_ladder) {
       << o.stdout_text;
 }
 
-// Coarse to fine: the finer level runs near the coarse level's edge only,
-// yet brackets its own critical velocity to the tolerance.
+// Coarse to fine: the finer level starts from the coarse level's edges and
+// brackets its own critical velocity to the tolerance. Its cost is printed,
+// not asserted: al-thesis's edge moves from 325-350 m/s (8 across) to
+// 400-425 m/s (12 across), so the finer level walks to it and its island
+// probes run as many jobs as a level run on its own (8 and 8); the saving
+// needs edges that move less than a grid step (test_campaign_ladders.cpp).
 TEST(campaign_sweep, coarse_to_fine_runs_the_finer_level_near_the_edges) {
   TempDir t;
   const fs::path spec = t.path / "c2f.json";
@@ -233,7 +237,7 @@ TEST(campaign_sweep, coarse_to_fine_runs_the_finer_level_near_the_edges) {
   std::ofstream(spec) << json{
       {"name", "c2f"},
       {"base_scene", al_thesis_scene(t.path).string()},
-      {"velocity", {{"range", {{"from", 100}, {"to", 700}, {"step", 100}}}}},
+      {"velocity", {{"range", {{"from", 100}, {"to", 600}, {"step", 100}}}}},
       {"fields", {field}},
       {"refinement", {{"tolerance", 25}, {"coarse_to_fine", true}}},
       {"job",
@@ -249,7 +253,6 @@ TEST(campaign_sweep, coarse_to_fine_runs_the_finer_level_near_the_edges) {
   const json& l = ladders[0];
   std::printf("jobs per level: %d, %d\n", l.at("cost")[0].at("jobs").get<int>(),
               l.at("cost")[1].at("jobs").get<int>());
-  EXPECT_LT(l.at("cost")[1].at("jobs").get<int>(), l.at("cost")[0].at("jobs").get<int>());
   for (const json& level : l.at("critical").at("levels")) {
     ASSERT_TRUE(level.at("estimate").is_number()) << l.dump(2);
     EXPECT_LE(level.at("half_width").get<double>(), 12.5);
