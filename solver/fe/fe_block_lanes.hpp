@@ -247,8 +247,8 @@ SPLAT_LANE_INLINE void list_active(const FeBody& body, std::size_t begin, std::s
 
 // Phase (a), after the geometry: with L at mid-step (dt > 0), the
 // Hughes-Winget rotation of st.s, R, tr(D) and the material inputs
-// d_eps = sym(L) dt, J from tr(d_eps) (volume_ratio_after), L_c of the group's valid lanes; for dt
-// = 0 R = I and tr(D) = 0 (no material update).
+// d_eps = sym(L) dt, J from tr(d_eps) (volume_ratio_after), L_c of the
+// group's valid lanes; for dt = 0 R = I and tr(D) = 0 (no material update).
 template <int W, class Scratch>
 SPLAT_LANE_INLINE void kinematics_lanes(FeBody& body, int g, const Lane<W> L[3][3], double dt,
                                         Scratch& s) {

@@ -337,6 +337,22 @@ void check_geometry(const BodySpec& b, const std::string& p, Problems& problems)
   }
 }
 
+// grading.uniform_extent: half-widths of the zone at the base element size,
+// m, [r, 0, z] for fe-axisym bodies; rectangle and box geometries only.
+void parse_uniform_extent(const json& u, BodySpec& b, bool axisym, const std::string& up,
+                          Problems& problems) {
+  b.grading.uniform_extent = vec3(u);
+  if ((b.grading.uniform_extent.array() < 0.0).any()) {
+    problems.add(up, "must be >= 0 along every axis (m)");
+  }
+  if (axisym && b.grading.uniform_extent.y() != 0.0) {
+    problems.add(up + "/1", "must be 0 for fe-axisym bodies: [r, 0, z] (m)");
+  }
+  const bool block =
+      b.geometry.type == GeometryType::rectangle || b.geometry.type == GeometryType::box;
+  if (!block) problems.add(up, "is for rectangle and box geometries only");
+}
+
 void parse_discretization(const json& d, BodySpec& b, const std::string& p, Problems& problems) {
   const std::string dp = at(p, "discretization");
   b.discretization = from_name(discretization_names, d.at("type").get<std::string>());
@@ -393,14 +409,7 @@ void parse_discretization(const json& d, BodySpec& b, const std::string& p, Prob
       problems.add(fp + "/1", "must be 0 for fe-axisym bodies: [r, 0, z] (m)");
     }
     if (const auto u = g->find("uniform_extent"); u != g->end()) {
-      const std::string up = dp + "/grading/uniform_extent";
-      b.grading.uniform_extent = vec3(*u);
-      if ((b.grading.uniform_extent.array() < 0.0).any()) {
-        problems.add(up, "must be >= 0 along every axis (m)");
-      }
-      const bool block =
-          b.geometry.type == GeometryType::rectangle || b.geometry.type == GeometryType::box;
-      if (!block) problems.add(up, "is for rectangle and box geometries only");
+      parse_uniform_extent(*u, b, axisym, dp + "/grading/uniform_extent", problems);
     }
   }
 }

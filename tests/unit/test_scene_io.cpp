@@ -244,6 +244,8 @@ TEST(SceneIo, grading_uniform_extent_is_read_checked_and_written_back) {
 
   g["uniform_extent"] = {2e-4, 0, -1e-4};
   expect_violation(doc, "/bodies/0/discretization/grading/uniform_extent/2", ">= 0");
+  g["uniform_extent"] = {2e-4, 1e-4, 1e-4};
+  expect_violation(doc, "/bodies/0/discretization/grading/uniform_extent/1", "must be 0");
   g["uniform_extent"] = {2e-4, 0, 1e-4};
   doc["bodies"][0]["geometry"] = {{"type", "half-disc"}, {"radius", 10e-6}, {"z_centre", 0.0}};
   expect_violation(doc, "/bodies/0/discretization/grading/uniform_extent",
