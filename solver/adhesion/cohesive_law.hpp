@@ -105,11 +105,16 @@ namespace splat {
 // What turns a pair in contact into a bond (thesis 2.2.2; 5.3.2 names the
 // temperature among the criteria worth trying): each rule is one case of
 // side_activated below, reading the averaged InterfaceSideState.
-enum class ActivationRule { none, yield_drop, temperature };
-inline constexpr NameTable<ActivationRule, 3> k_activation_rule_names{{
+// surface_expansion is the film theory of cold welding (Bay 1979, J. Eng.
+// Ind. 101(2) 121-127; Bay 1983, Welding J. 62, 137s-142s): the oxide and
+// contaminant film cracks once the surface has grown by a threshold, and
+// metal meets metal through the cracks; each side's own film must crack.
+enum class ActivationRule { none, yield_drop, temperature, surface_expansion };
+inline constexpr NameTable<ActivationRule, 4> k_activation_rule_names{{
     {ActivationRule::none, "none"},
     {ActivationRule::yield_drop, "yield-drop"},
     {ActivationRule::temperature, "temperature"},
+    {ActivationRule::surface_expansion, "surface-expansion"},
 }};
 static_assert(names_in_order(k_activation_rule_names));
 constexpr const auto& names_of(ActivationRule) {
@@ -139,6 +144,9 @@ struct AdhesionParams {
   double yield_drop = 0.0;  // fraction in [0,1): activation when sigma_y <= (1-x)*peak
   // Rule temperature: activation when T / T_melt of a side reaches this, -.
   double homologous_temperature = 1.0;
+  // Rule surface_expansion: activation when Bay's surface expansion
+  // Y = (A - A0) / A of a side's surface reaches this threshold Y', -.
+  double surface_expansion = 1.0;
   ActivationSides sides = ActivationSides::either;
   std::optional<double> D_adh_max;  // damage at which a link erodes; empty = never
   // Radius of the material around a contact point over which activation,
@@ -154,8 +162,9 @@ const char* to_string(LinkState s);
 // One side of a pair meets the activation rule: for yield_drop its rate-free
 // yield stress has fallen yield_drop below the largest value seen there
 // (yield_ratio <= 1 - yield_drop); for temperature it has reached
-// homologous_temperature. A side without material (InterfaceSideState{})
-// never meets either.
+// homologous_temperature; for surface_expansion its surface has grown to
+// Bay's expansion surface_expansion. A side without material
+// (InterfaceSideState{}) never meets any.
 inline bool side_activated(const AdhesionParams& p, const InterfaceSideState& s) {
   switch (p.activation) {
     case ActivationRule::none:
@@ -164,6 +173,8 @@ inline bool side_activated(const AdhesionParams& p, const InterfaceSideState& s)
       return s.yield_ratio <= 1.0 - p.yield_drop;
     case ActivationRule::temperature:
       return s.homologous_temperature >= p.homologous_temperature;
+    case ActivationRule::surface_expansion:
+      return s.surface_expansion >= p.surface_expansion;
   }
   return false;
 }

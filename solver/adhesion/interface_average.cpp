@@ -77,11 +77,12 @@ void accumulate(InterfaceSideState& sum, double w, const InterfaceSideState& s) 
   sum.damage += w * s.damage;
   sum.flow_stress += w * s.flow_stress;
   sum.homologous_temperature += w * s.homologous_temperature;
+  sum.surface_expansion += w * s.surface_expansion;
 }
 
 InterfaceSideState divided(const InterfaceSideState& sum, double w_sum) {
   return {sum.yield_ratio / w_sum, sum.damage / w_sum, sum.flow_stress / w_sum,
-          sum.homologous_temperature / w_sum};
+          sum.homologous_temperature / w_sum, sum.surface_expansion / w_sum};
 }
 
 std::vector<InterfaceSideState> average_around(const std::vector<MaterialSample>& samples,

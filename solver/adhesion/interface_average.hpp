@@ -36,6 +36,11 @@ struct InterfaceSideState {
   double damage = 0.0;                  // D, -
   double flow_stress = 1e30;            // current rate-free yield stress sigma_y_static, Pa
   double homologous_temperature = 0.0;  // T / T_melt, -
+  // Bay's surface expansion (A - A0) / A of the side's surface at the contact
+  // point, -: a property of the surface, not of the material behind it, so
+  // the contact stage sets it from the surface geometry after the average
+  // (material samples carry 0).
+  double surface_expansion = 0.0;
 };
 
 // The state of a material point with state `st` of a material melting at

@@ -632,17 +632,51 @@ InterfaceStates ContactInterface::interface_states(const NodeSet& nodes,
     }
     if (master_fe) out.master[n] = master_side_state(bodies[master_index_], link_face_[k]);
   }
-  if (ids.empty() || !(l > 0.0)) return out;
-  lo.array() -= l;
-  hi.array() += l;
-  const auto side = [&](bool fe, bool p, std::size_t index) {
-    if (fe) return fe_samples(bodies[index], nodes, lo, hi);
-    if (p) return sph_samples(sph[index], nodes, lo, hi);
-    return std::vector<MaterialSample>{};
-  };
-  out.slave = average_around(side(slave_fe, slave_p, slave_index_), centres, l, out.slave);
-  out.master = average_around(side(master_fe, master_p, master_index_), centres, l, out.master);
+  if (!ids.empty() && l > 0.0) {
+    lo.array() -= l;
+    hi.array() += l;
+    const auto side = [&](bool fe, bool p, std::size_t index) {
+      if (fe) return fe_samples(bodies[index], nodes, lo, hi);
+      if (p) return sph_samples(sph[index], nodes, lo, hi);
+      return std::vector<MaterialSample>{};
+    };
+    out.slave = average_around(side(slave_fe, slave_p, slave_index_), centres, l, out.slave);
+    out.master = average_around(side(master_fe, master_p, master_index_), centres, l, out.master);
+  }
+  if (settings_.adhesion->activation == ActivationRule::surface_expansion) {
+    set_surface_expansion(out, nodes, ids, sph);
+  }
   return out;
+}
+
+namespace {
+
+// Y = 1 - 1 / (A / A0) of an SPH particle's share of its body's surface
+// (sph_surface_stretch: A / A0 by Nanson's rule), global node g; 0 where the
+// share has not grown.
+double particle_surface_expansion(const SphBody& b, int g) {
+  const double stretch = sph_surface_stretch(b, static_cast<std::size_t>(g) - b.node_begin);
+  return stretch > 1.0 && std::isfinite(stretch) ? 1.0 - 1.0 / stretch : 0.0;
+}
+
+}  // namespace
+
+void ContactInterface::set_surface_expansion(InterfaceStates& out, const NodeSet& nodes,
+                                             const std::vector<int>& ids,
+                                             const std::vector<SphBody>& sph) const {
+  const bool slave_p = slave_sph_ && slave_index_ < sph.size();
+  const bool master_p = master_sph_ && master_index_ < sph.size();
+  for (std::size_t n = 0; n < ids.size(); ++n) {
+    const int k = ids[n];
+    const int f = link_face_[k];
+    out.slave[n].surface_expansion =
+        slave_p ? particle_surface_expansion(sph[slave_index_], slave_.nodes[k])
+                : node_surface_expansion(slave_, k, nodes.x0, nodes.x);
+    if (f < 0) continue;
+    out.master[n].surface_expansion =
+        master_p ? particle_surface_expansion(sph[master_index_], master_.faces[f][0])
+                 : face_surface_expansion(master_, f, nodes.x0, nodes.x);
+  }
 }
 
 void ContactInterface::update_links_before_solve(const NodeSet& nodes,

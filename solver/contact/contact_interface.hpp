@@ -263,6 +263,11 @@ class ContactInterface {
   InterfaceStates interface_states(const NodeSet& nodes, const std::vector<int>& ids,
                                    const std::vector<FeBody>& bodies,
                                    const std::vector<SphBody>& sph) const;
+  // Each side's surface expansion at the contact points `ids` (slave nodes):
+  // the slave node's faces, the master face of its link, or the SPH
+  // particle's share of its body's surface.
+  void set_surface_expansion(InterfaceStates& out, const NodeSet& nodes,
+                             const std::vector<int>& ids, const std::vector<SphBody>& sph) const;
   // The adhesion law of slave node k's link: the scene's, with the link's
   // strength (link_strength) as its fixed cap.
   AdhesionParams link_params(int k) const;

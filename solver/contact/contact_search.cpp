@@ -216,6 +216,40 @@ double slave_node_area(const ContactSurface& s, int k, const std::vector<Vec3>& 
   return area;
 }
 
+double face_area(const ContactSurface& s, int f, const std::vector<Vec3>& x) {
+  const auto pts = face_points(s, f, x);
+  if (s.kind == DetectionKind::node_on_segment) {
+    return (pts[1] - pts[0]).norm() * 0.5 * (pts[0].x() + pts[1].x());
+  }
+  return quad_area(pts);
+}
+
+namespace {
+
+// Y = 1 - A0 / A, 0 where the surface has not grown (or has no area).
+double expansion(double A0, double A) {
+  return A > A0 && A0 > 0.0 && std::isfinite(A) ? 1.0 - A0 / A : 0.0;
+}
+
+}  // namespace
+
+double face_surface_expansion(const ContactSurface& s, int f, const std::vector<Vec3>& x0,
+                              const std::vector<Vec3>& x) {
+  if (s.kind == DetectionKind::particle_pinball || f < 0) return 0.0;
+  return expansion(face_area(s, f, x0), face_area(s, f, x));
+}
+
+double node_surface_expansion(const ContactSurface& s, int k, const std::vector<Vec3>& x0,
+                              const std::vector<Vec3>& x) {
+  if (s.kind == DetectionKind::particle_pinball || !s.radius.empty()) return 0.0;
+  double A0 = 0.0, A = 0.0;
+  for (int e = s.node_face_offsets[k]; e < s.node_face_offsets[k + 1]; ++e) {
+    A0 += face_area(s, s.node_face_entries[e], x0);
+    A += face_area(s, s.node_face_entries[e], x);
+  }
+  return expansion(A0, A);
+}
+
 std::vector<DetectedPair> find_pairs_all_pairs(const ContactSurface& master,
                                                const ContactSurface& slave,
                                                const std::vector<Vec3>& x,

@@ -137,6 +137,21 @@ ContactSurface make_particle_surface(const std::vector<int>& particles,
 // 2.2.4). m^2 (per radian in 2D).
 double slave_node_area(const ContactSurface& s, int k, const std::vector<Vec3>& x);
 
+// Area of face f of an FE surface on positions x: a quad's area (3D), or a
+// segment's length times its mean radius (axisymmetric, per radian: the
+// ring it sweeps over 2 pi), m^2.
+double face_area(const ContactSurface& s, int f, const std::vector<Vec3>& x);
+
+// Surface expansion of Bay's cold-welding model, Y = (A - A0) / A, on the
+// reference positions x0 and the current x: of face f (face_area), and of
+// slave node k over the faces it belongs to (their areas summed, so a node
+// on the axis of an axisymmetric surface has one). 0 for an unstretched or a
+// compressed surface (A <= A0) and for a degenerate one, -.
+double face_surface_expansion(const ContactSurface& s, int f, const std::vector<Vec3>& x0,
+                              const std::vector<Vec3>& x);
+double node_surface_expansion(const ContactSurface& s, int k, const std::vector<Vec3>& x0,
+                              const std::vector<Vec3>& x);
+
 // Size of master face f on x: segment length, sqrt(area), or a particle's
 // largest diameter 2 reach, m.
 double face_size(const ContactSurface& s, int f, const std::vector<Vec3>& x);

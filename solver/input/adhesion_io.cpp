@@ -25,6 +25,7 @@ AdhesionParams adhesion_from_json(const json& j) {
         parse<ActivationRule>(a->value("rule", std::string("none"))).value_or(ActivationRule::none);
     p.yield_drop = a->value("drop_percent", 0.0) / 100.0;
     p.homologous_temperature = a->value("homologous_temperature", 1.0);
+    p.surface_expansion = a->value("surface_expansion", 1.0);
     p.sides = a->value("sides", std::string("either")) == "both" ? ActivationSides::both
                                                                  : ActivationSides::either;
   }
@@ -37,6 +38,9 @@ json adhesion_to_json(const AdhesionParams& p) {
                   {"sides", p.sides == ActivationSides::both ? "both" : "either"}};
   if (p.activation == ActivationRule::temperature) {
     activation["homologous_temperature"] = p.homologous_temperature;
+  }
+  if (p.activation == ActivationRule::surface_expansion) {
+    activation["surface_expansion"] = p.surface_expansion;
   }
   return {{"G_c", p.G_c},
           {"sigma_c", p.cap_at_flow_stress ? json("flow-stress")

@@ -3,8 +3,9 @@
 // interactions. JSON fields and units:
 //   G_c        J/m^2   adhesion energy per bonded area
 //   sigma_c    Pa      tensile stress cap, or null = none (Griffith form)
-//   activation {rule: "none" | "yield-drop" | "temperature", drop_percent (%),
-//               homologous_temperature (-), sides: "either" | "both"}
+//   activation {rule: "none" | "yield-drop" | "temperature" | "surface-expansion",
+//               drop_percent (%), homologous_temperature (-),
+//               surface_expansion (-), sides: "either" | "both"}
 //   D_adh_max  -       damage at which a link erodes, or null = never
 #pragma once
 

@@ -91,6 +91,26 @@ TEST(cohesive_law, activation_on_the_interface_temperature) {
   EXPECT_FALSE(activation_met(p, yielded(10e6, 100e6), cool));
 }
 
+TEST(cohesive_law, activation_on_the_surface_expansion) {
+  AdhesionParams p;
+  p.activation = ActivationRule::surface_expansion;
+  p.surface_expansion = 0.3;
+  p.sides = ActivationSides::both;
+  InterfaceSideState film, cracked, hot;
+  film.surface_expansion = 0.29;
+  cracked.surface_expansion = 0.3;  // the threshold itself activates
+  hot.homologous_temperature = 0.99;
+  hot.yield_ratio = 0.1;
+  // Both films must crack: one grown surface is not enough.
+  EXPECT_FALSE(activation_met(p, cracked, film));
+  EXPECT_FALSE(activation_met(p, film, cracked));
+  EXPECT_TRUE(activation_met(p, cracked, cracked));
+  p.sides = ActivationSides::either;
+  EXPECT_TRUE(activation_met(p, cracked, film));
+  // Heat and softening do not crack a film that has not grown.
+  EXPECT_FALSE(activation_met(p, hot, film));
+}
+
 TEST(cohesive_law, erosion_on_either_side_only_with_a_limit) {
   AdhesionParams p;
   EXPECT_FALSE(erosion_met(p, 1.0, 1.0));  // no D_adh_max: never

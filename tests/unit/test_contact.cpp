@@ -179,6 +179,43 @@ TEST(ContactSearch, slave_areas_add_up_to_the_surface) {
   EXPECT_NEAR(area, 2.0, 2.0 * 0.01);
 }
 
+TEST(ContactSearch, surface_expansion_of_stretched_rotated_and_compressed_surfaces) {
+  // Axisymmetric: a flat annulus from the axis to r = 2 (three segments in z
+  // = 0) stretched radially by s grows its ring areas by s^2 (length s,
+  // mean radius s): Bay's Y = (A - A0) / A = 1 - 1 / s^2 at every node, the
+  // node on the axis included; a rigid shift along the axis leaves Y = 0,
+  // and a radial compression too (the film does not crack where the surface
+  // shrinks).
+  const std::vector<Vec3> x0{{0.0, 0.0, 0.0}, {0.5, 0.0, 0.0}, {1.2, 0.0, 0.0}, {2.0, 0.0, 0.0}};
+  const ContactSurface ring = make_contact_surface(DetectionKind::node_on_segment,
+                                                   {{0, 1, 0, 0}, {1, 2, 0, 0}, {2, 3, 0, 0}});
+  const auto mapped = [&](double s, double dz) {
+    std::vector<Vec3> x;
+    for (const Vec3& p : x0) x.emplace_back(s * p.x(), p.y() + dz, 0.0);
+    return x;
+  };
+  for (double s : {1.2, 2.0}) {
+    const auto x = mapped(s, 3.0);
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_NEAR(node_surface_expansion(ring, k, x0, x), 1.0 - 1.0 / (s * s), 1e-12) << k;
+    }
+    for (int f = 0; f < 3; ++f) {
+      EXPECT_NEAR(face_surface_expansion(ring, f, x0, x), 1.0 - 1.0 / (s * s), 1e-12) << f;
+    }
+  }
+  EXPECT_EQ(node_surface_expansion(ring, 2, x0, mapped(1.0, 3.0)), 0.0);
+  EXPECT_EQ(node_surface_expansion(ring, 2, x0, mapped(0.8, 0.0)), 0.0);
+  // 3D: a unit square stretched by 1.5 and 2 in its plane, then rotated
+  // about an axis in its plane, has 3 times its area: Y = 2/3.
+  const std::vector<Vec3> q0{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const ContactSurface quad = make_contact_surface(DetectionKind::node_on_quad, {{0, 1, 2, 3}});
+  const double c = std::cos(0.7), sn = std::sin(0.7);
+  std::vector<Vec3> q;
+  for (const Vec3& p : q0) q.emplace_back(1.5 * p.x(), c * 2.0 * p.y(), sn * 2.0 * p.y());
+  EXPECT_NEAR(face_surface_expansion(quad, 0, q0, q), 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(node_surface_expansion(quad, 1, q0, q), 2.0 / 3.0, 1e-12);
+}
+
 // Contact problem of two surfaces: every detected pair, random lumped masses.
 ContactProblem problem_of(const TwoSurfaces& t, double dt, unsigned seed) {
   const auto pairs = find_pairs_all_pairs(t.master, t.slave, t.x, SearchSettings{});
