@@ -328,6 +328,30 @@ void ContactInterface::release_local_nodes() {
   local_nodes_.clear();
 }
 
+std::vector<DetectedPair> ContactInterface::open_link_pairs(
+    const std::vector<Vec3>& x, const std::vector<DetectedPair>& found) const {
+  std::vector<std::uint8_t> paired(slave_.nodes.size(), 0);
+  for (const DetectedPair& p : found) paired[p.slave] = 1;
+  std::vector<DetectedPair> out;
+  for (std::size_t k = 0; k < slave_.nodes.size(); ++k) {
+    const int f = link_face_[k];
+    if (link_state_[k] != LinkState::active || paired[k] || f < 0) continue;
+    // A link with nothing left to spend (a node on the axis bonds no area)
+    // holds nothing: it goes with its pair.
+    if (!(work_budget(*settings_.adhesion, link_area_[k]) > link_work_[k])) continue;
+    const int ki = static_cast<int>(k);
+    const std::optional<double> strength = link_params(ki).sigma_c;
+    const double size = face_size(master_, f, x);
+    const double reach =
+        strength && *strength > 0.0 ? 2.0 * settings_.adhesion->G_c / *strength : size;
+    const double max_gap = std::max(reach, settings_.search.search_margin * size);
+    if (const auto p = pair_on_face(master_, f, slave_, ki, x, settings_.search, max_gap)) {
+      out.push_back(*p);
+    }
+  }
+  return out;
+}
+
 std::vector<DetectedPair> ContactInterface::detect(const NodeSet& nodes) {
   const std::vector<Vec3>& x = nodes.x;
   auto live = [&](const ContactSurface& sl, const ContactSurface& ma, const DetectedPair& p) {
@@ -344,6 +368,14 @@ std::vector<DetectedPair> ContactInterface::detect(const NodeSet& nodes) {
   std::vector<DetectedPair> pairs;
   for (const DetectedPair& p : find_pairs_buckets(master_, slave_, x, settings_.search)) {
     if (live(slave_, master_, p)) pairs.push_back(p);
+  }
+  if (settings_.adhesion) {
+    for (const DetectedPair& p : open_link_pairs(x, pairs)) {
+      if (live(slave_, master_, p)) pairs.push_back(p);
+    }
+    std::stable_sort(pairs.begin(), pairs.end(), [](const DetectedPair& a, const DetectedPair& b) {
+      return a.slave < b.slave;
+    });
   }
   first_pass_pairs_ = pairs.size();
   if (settings_.two_pass) {

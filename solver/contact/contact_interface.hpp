@@ -263,6 +263,15 @@ class ContactInterface {
   InterfaceStates interface_states(const NodeSet& nodes, const std::vector<int>& ids,
                                    const std::vector<FeBody>& bodies,
                                    const std::vector<SphBody>& sph) const;
+  // The pairs of active links that the search (`found`) no longer finds
+  // because their pair has opened past the search margin: each on its
+  // link's face, up to twice the opening that spends a capped link's whole
+  // budget at its strength (2 G_c / sigma_c), or one face size for an
+  // uncapped link; links with no budget left (no area) are not followed. Without them a bond would
+  // let go at an opening of a tenth of the face size, whatever its G_c, an opening that shrinks as
+  // the mesh is refined.
+  std::vector<DetectedPair> open_link_pairs(const std::vector<Vec3>& x,
+                                            const std::vector<DetectedPair>& found) const;
   // Each side's surface expansion at the contact points `ids` (slave nodes):
   // the slave node's faces, the master face of its link, or the SPH
   // particle's share of its body's surface.

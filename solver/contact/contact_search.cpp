@@ -216,6 +216,22 @@ double slave_node_area(const ContactSurface& s, int k, const std::vector<Vec3>& 
   return area;
 }
 
+std::optional<DetectedPair> pair_on_face(const ContactSurface& master, int f,
+                                         const ContactSurface& slave, int k,
+                                         const std::vector<Vec3>& x, const SearchSettings& st,
+                                         double max_gap) {
+  DetectedPair c;
+  c.slave = k;
+  c.face = f;
+  c.geometry = project(master, f, x[slave.nodes[k]], x);
+  if (!c.geometry.valid) return std::nullopt;
+  c.geometry.gap -= slave.radius_along(k, c.geometry.normal);
+  const double size = face_size(master, f, x);
+  if (c.geometry.distance_outside > st.outside_tolerance) return std::nullopt;
+  if (c.geometry.gap > max_gap || c.geometry.gap < -st.capture_depth * size) return std::nullopt;
+  return c;
+}
+
 double face_area(const ContactSurface& s, int f, const std::vector<Vec3>& x) {
   const auto pts = face_points(s, f, x);
   if (s.kind == DetectionKind::node_on_segment) {

@@ -45,6 +45,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "solver/common/types.hpp"
@@ -171,6 +172,15 @@ struct DetectedPair {
   // primary pair).
   bool primary = true;
 };
+
+// Slave node k against master face f alone, accepting gaps up to max_gap
+// (m) instead of the search margin (the other tests of the search hold):
+// the pair of a bonded node whose pair has opened past the margin; empty if
+// the node does not project onto the face or lies outside the gap range.
+std::optional<DetectedPair> pair_on_face(const ContactSurface& master, int f,
+                                         const ContactSurface& slave, int k,
+                                         const std::vector<Vec3>& x, const SearchSettings& st,
+                                         double max_gap);
 
 // Pairs sorted by slave index; at most one per slave node, except on
 // particle_pinball masters: every master particle in range (a slave particle
