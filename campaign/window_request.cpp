@@ -64,7 +64,8 @@ VelocityRange parse_velocity_range(const std::string& text) {
 json bonding_model(double G_c) {
   return {{"G_c", G_c},
           {"sigma_c", "flow-stress"},
-          {"activation", {{"rule", "yield-drop"}, {"drop_percent", 30}, {"sides", "either"}}},
+          {"activation",
+           {{"rule", "surface-expansion"}, {"surface_expansion", 0.3}, {"sides", "both"}}},
           {"averaging_length", 2e-6},
           {"D_adh_max", nullptr}};
 }
@@ -97,7 +98,7 @@ json window_campaign(const WindowRequest& r) {
                           number(r.velocity.from) + "-" + number(r.velocity.to) +
                           " m/s, axisymmetric FE with splat's bonding model (G_c " + number(r.G_c) +
                           " J/m^2), edges refined to " + number(tolerance) + " m/s" +
-                          (converged ? " at 8, 16 and 32 elements across (coarse to fine)"
+                          (converged ? " at 16, 32 and 48 elements across (coarse to fine)"
                                      : " at 8 elements across") +
                           "."},
       {"tags", {"window"}},
@@ -113,7 +114,7 @@ json window_campaign(const WindowRequest& r) {
   if (converged) {
     doc["fields"] = {{{"pointer", "/particle_impact/particle/elements_across"},
                       {"unit", "-"},
-                      {"values", {8, 16, 32}}}};
+                      {"values", {16, 32, 48}}}};
   }
   return doc;
 }

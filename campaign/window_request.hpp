@@ -20,7 +20,7 @@ struct WindowRequest {
   std::string substrate;          // empty: the particle's material
   double radius = 12.5e-6;        // m
   VelocityRange velocity;         // grid of the coarsest level
-  std::string accuracy = "fast";  // fast: 8 elements across; converged: 8, 16, 32 coarse to fine
+  std::string accuracy = "fast";  // fast: 8 elements across; converged: 16, 32, 48 coarse to fine
   double G_c = 30.0;              // J/m^2
 };
 
@@ -28,15 +28,16 @@ struct WindowRequest {
 // naming --velocity.
 VelocityRange parse_velocity_range(const std::string& text);
 
-// splat's bonding model (as scenes/impact_al_al.json): links capped at the
-// weaker side's flow stress, activated by a 30 % yield drop averaged over
-// 2 um, never eroded; G_c in J/m^2.
+// splat's bonding model (as scenes/impact_al_al_expansion.json): links
+// capped at the weaker side's flow stress, activated where the surfaces of
+// both sides have grown to Bay's surface expansion 0.3, never eroded; G_c
+// in J/m^2.
 nlohmann::json bonding_model(double G_c);
 
 // The campaign document of a request: axisymmetric FE impacts, the velocity
 // grid, refinement to 25 m/s (fast) or 10 m/s (converged) with a guard band
 // of twice the tolerance, and for `converged` the elements_across ladder
-// 8, 16, 32 refined coarse to fine. Throws InputError naming the option for
+// 16, 32, 48 refined coarse to fine. Throws InputError naming the option for
 // a radius or accuracy out of range.
 nlohmann::json window_campaign(const WindowRequest& request);
 

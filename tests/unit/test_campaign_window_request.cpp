@@ -31,7 +31,7 @@ std::string refusal(const std::function<void()>& f) {
 
 // The bonding model `splat window` uses is the one of the example scene.
 TEST(campaign_window_request, bonding_model_is_the_example_scenes) {
-  std::ifstream in(k_source / "scenes" / "impact_al_al.json");
+  std::ifstream in(k_source / "scenes" / "impact_al_al_expansion.json");
   const json scene = json::parse(in);
   EXPECT_EQ(bonding_model(30.0), scene.at("particle_impact").at("adhesion"));
 }
@@ -62,7 +62,7 @@ TEST(campaign_window_request, fast_is_one_level_converged_a_coarse_to_fine_ladde
   r.accuracy = "converged";
   const CampaignSpec fine = read_campaign(window_campaign(r), k_source);
   ASSERT_NE(ladder_axis(fine), nullptr);
-  EXPECT_EQ(ladder_axis(fine)->values, (std::vector<json>{8, 16, 32}));
+  EXPECT_EQ(ladder_axis(fine)->values, (std::vector<json>{16, 32, 48}));
   EXPECT_TRUE(fine.refinement->coarse_to_fine);
   EXPECT_DOUBLE_EQ(fine.refinement->tolerance, 10.0);
 }
