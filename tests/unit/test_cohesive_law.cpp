@@ -71,6 +71,21 @@ TEST(cohesive_law, activation_either_and_both_sides) {
   EXPECT_TRUE(activation_met(none, steady, steady));
 }
 
+// The sides rule for a side state `met` that meets p's activation rule and
+// one, `unmet`, that does not: either side suffices with `either`, both are
+// needed with `both`.
+void expect_sides_rule(AdhesionParams p, const InterfaceSideState& met,
+                       const InterfaceSideState& unmet) {
+  p.sides = ActivationSides::either;
+  EXPECT_FALSE(activation_met(p, unmet, unmet));
+  EXPECT_TRUE(activation_met(p, met, unmet));
+  EXPECT_TRUE(activation_met(p, unmet, met));
+  p.sides = ActivationSides::both;
+  EXPECT_FALSE(activation_met(p, met, unmet));
+  EXPECT_FALSE(activation_met(p, unmet, met));
+  EXPECT_TRUE(activation_met(p, met, met));
+}
+
 TEST(cohesive_law, activation_on_the_interface_temperature) {
   AdhesionParams p;
   p.activation = ActivationRule::temperature;
@@ -78,12 +93,8 @@ TEST(cohesive_law, activation_on_the_interface_temperature) {
   InterfaceSideState cool, hot;
   cool.homologous_temperature = 0.59;
   hot.homologous_temperature = 0.6;  // the threshold itself activates
-  EXPECT_FALSE(activation_met(p, cool, cool));
-  EXPECT_TRUE(activation_met(p, hot, cool));
-  EXPECT_TRUE(activation_met(p, cool, hot));
+  expect_sides_rule(p, hot, cool);
   p.sides = ActivationSides::both;
-  EXPECT_FALSE(activation_met(p, hot, cool));
-  EXPECT_TRUE(activation_met(p, hot, hot));
   // A side without material never heats; a softened but cool side does not
   // activate on temperature.
   EXPECT_FALSE(activation_met(p, InterfaceSideState{}, hot));
@@ -95,19 +106,15 @@ TEST(cohesive_law, activation_on_the_surface_expansion) {
   AdhesionParams p;
   p.activation = ActivationRule::surface_expansion;
   p.surface_expansion = 0.3;
-  p.sides = ActivationSides::both;
   InterfaceSideState film, cracked, hot;
   film.surface_expansion = 0.29;
   cracked.surface_expansion = 0.3;  // the threshold itself activates
   hot.homologous_temperature = 0.99;
   hot.yield_ratio = 0.1;
-  // Both films must crack: one grown surface is not enough.
-  EXPECT_FALSE(activation_met(p, cracked, film));
-  EXPECT_FALSE(activation_met(p, film, cracked));
-  EXPECT_TRUE(activation_met(p, cracked, cracked));
-  p.sides = ActivationSides::either;
-  EXPECT_TRUE(activation_met(p, cracked, film));
+  // With `both`, each side's film must crack: one grown surface is not enough.
+  expect_sides_rule(p, cracked, film);
   // Heat and softening do not crack a film that has not grown.
+  p.sides = ActivationSides::either;
   EXPECT_FALSE(activation_met(p, hot, film));
 }
 
