@@ -463,27 +463,20 @@ void ContactInterface::drop_repeated_rows(const NodeSet& nodes,
                                           const std::vector<std::uint8_t>& mask,
                                           std::vector<DetectedPair>& pairs, double dt) {
   if (pairs.size() <= first_pass_pairs_) return;
-  std::vector<std::uint8_t> repeated =
-      repeated_rows(problem_, first_pass_pairs_, settings_.max_row_correlation);
   // An active link holds its pair's gap both ways; a compressive
-  // second-pass row on any of its nodes could cancel the link's tension
-  // with an equal push on a nearly parallel row, so that the link is
-  // charged work it never does (measured: the elastic sphere with sigma_c
-  // large exhausted its links while rebounding at the free speed).
+  // second-pass row nearly parallel to it could cancel the link's tension
+  // with an equal push, so that the link is charged work it never does
+  // (the elastic sphere with sigma_c large exhausted its links while
+  // rebounding at the free speed): such rows go from a lower correlation.
+  std::vector<double> threshold(first_pass_pairs_, settings_.max_row_correlation);
   if (settings_.adhesion) {
-    std::vector<std::uint8_t> bonded(local_nodes_.size(), 0);
     for (std::size_t i = 0; i < first_pass_pairs_; ++i) {
-      if (!pairs[i].primary || link_state_[pairs[i].slave] != LinkState::active) continue;
-      for (int n : problem_.node[i]) {
-        if (n >= 0) bonded[n] = 1;
-      }
-    }
-    for (std::size_t i = first_pass_pairs_; i < pairs.size(); ++i) {
-      for (int n : problem_.node[i]) {
-        if (n >= 0 && bonded[n]) repeated[i] = 1;
+      if (pairs[i].primary && link_state_[pairs[i].slave] == LinkState::active) {
+        threshold[i] = settings_.max_bonded_row_correlation;
       }
     }
   }
+  std::vector<std::uint8_t> repeated = repeated_rows(problem_, first_pass_pairs_, threshold);
   if (std::none_of(repeated.begin(), repeated.end(), [](std::uint8_t r) { return r != 0; })) {
     return;
   }

@@ -228,6 +228,11 @@ double normal_inverse_mass(const ContactProblem& P, std::size_t i) {
 
 std::vector<std::uint8_t> repeated_rows(const ContactProblem& P, std::size_t first,
                                         double max_correlation) {
+  return repeated_rows(P, first, std::vector<double>(first, max_correlation));
+}
+
+std::vector<std::uint8_t> repeated_rows(const ContactProblem& P, std::size_t first,
+                                        const std::vector<double>& max_correlation) {
   const std::size_t np = P.pairs();
   std::vector<std::uint8_t> out(np, 0);
   if (first >= np) return out;
@@ -268,7 +273,7 @@ std::vector<std::uint8_t> repeated_rows(const ContactProblem& P, std::size_t fir
       for (int e = offsets[n]; e < offsets[n + 1]; ++e) {
         const std::size_t j = static_cast<std::size_t>(entries[e]);
         const double hj = row_diag(P, j, P.normal[j]);
-        if (hj > 0.0 && coupling(i, j) >= max_correlation * std::sqrt(hi * hj)) {
+        if (hj > 0.0 && coupling(i, j) >= max_correlation[j] * std::sqrt(hi * hj)) {
           out[i] = 1;
           break;
         }

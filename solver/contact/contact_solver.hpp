@@ -107,6 +107,9 @@ double normal_inverse_mass(const ContactProblem& problem, std::size_t i);
 // (1: the same constraint). Returns a flag per row (0 for rows < first).
 std::vector<std::uint8_t> repeated_rows(const ContactProblem& problem, std::size_t first,
                                         double max_correlation);
+// The same with a threshold per row j < first (max_correlation[j]).
+std::vector<std::uint8_t> repeated_rows(const ContactProblem& problem, std::size_t first,
+                                        const std::vector<double>& max_correlation);
 
 // Largest violation of the complementarity conditions of a solution: the
 // most negative (H p - b)_i over all pairs, and the largest |H p - b|_i over
