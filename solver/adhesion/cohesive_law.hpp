@@ -131,6 +131,22 @@ constexpr const auto& names_of(ActivationRule) {
 inline constexpr double k_default_averaging_length = 2.0e-6;
 enum class ActivationSides { either, both };
 
+// How much of a link's area bonds once it is active. full: all of it.
+// film-cracks (surface_expansion only): the metal exposed through the
+// cracked films, Bay's fraction (Y - Y') / (1 - Y') of the area (Bay 1983,
+// Welding J. 62, 137s: the bond strength of cold pressure welds rises
+// linearly from 0 at the threshold Y' to the parent metal's at Y = 1),
+// growing while the pair is pressed together.
+enum class BondedFraction { full, film_cracks };
+inline constexpr NameTable<BondedFraction, 2> k_bonded_fraction_names{{
+    {BondedFraction::full, "full"},
+    {BondedFraction::film_cracks, "film-cracks"},
+}};
+static_assert(names_in_order(k_bonded_fraction_names));
+constexpr const auto& names_of(BondedFraction) {
+  return k_bonded_fraction_names;
+}
+
 struct AdhesionParams {
   double G_c = 0.0;               // J/m^2, adhesion energy per bonded area
   std::optional<double> sigma_c;  // Pa, tensile stress cap; empty = no fixed cap
@@ -148,6 +164,7 @@ struct AdhesionParams {
   // Y = (A - A0) / A of a side's surface reaches this threshold Y', -.
   double surface_expansion = 1.0;
   ActivationSides sides = ActivationSides::either;
+  BondedFraction bonded_fraction = BondedFraction::full;
   std::optional<double> D_adh_max;  // damage at which a link erodes; empty = never
   // Radius of the material around a contact point over which activation,
   // erosion and the flow-stress cap average each side's state
@@ -188,6 +205,22 @@ inline bool activation_met(const AdhesionParams& p, const InterfaceSideState& a,
   const bool da = side_activated(p, a);
   const bool db = side_activated(p, b);
   return p.sides == ActivationSides::both ? (da && db) : (da || db);
+}
+
+// The fraction of an active link's area that bonds with sides a and b
+// (BondedFraction): 1 for full or a rule other than surface_expansion; else
+// (Y - Y') / (1 - Y') in [0, 1], Y the expansion of the side the rule reads
+// (the smaller with both, the larger with either).
+inline double bonded_fraction(const AdhesionParams& p, const InterfaceSideState& a,
+                              const InterfaceSideState& b) {
+  if (p.bonded_fraction == BondedFraction::full ||
+      p.activation != ActivationRule::surface_expansion) {
+    return 1.0;
+  }
+  const double y = p.sides == ActivationSides::both
+                       ? std::min(a.surface_expansion, b.surface_expansion)
+                       : std::max(a.surface_expansion, b.surface_expansion);
+  return std::clamp((y - p.surface_expansion) / (1.0 - p.surface_expansion), 0.0, 1.0);
 }
 
 // Erosion test of thesis 2.2.3: damage on either side >= D_adh_max.

@@ -704,6 +704,25 @@ void ContactInterface::set_surface_expansion(InterfaceStates& out, const NodeSet
   }
 }
 
+// The bonded area of active link k: its adhesive area on activation, or,
+// with a bonded fraction below one, the largest fraction of its area
+// reached while its pair is pressed (metal extrudes through the cracked
+// films only under pressure, Bay 1983).
+void ContactInterface::grow_bond(int k, bool activated, bool pressed, const InterfaceSideState& a,
+                                 const InterfaceSideState& b, const NodeSet& nodes,
+                                 const std::vector<SphBody>& sph) {
+  const AdhesionParams& ap = *settings_.adhesion;
+  const bool partial = ap.bonded_fraction != BondedFraction::full;
+  if (!activated && !(partial && pressed)) return;
+  const double area = adhesive_area(k, link_face_[k], nodes.x, sph);
+  if (!partial) {
+    link_area_[k] = area;
+    return;
+  }
+  const double bonded = pressed ? area * bonded_fraction(ap, a, b) : 0.0;
+  link_area_[k] = activated ? bonded : std::max(link_area_[k], bonded);
+}
+
 void ContactInterface::update_links_before_solve(const NodeSet& nodes,
                                                  const std::vector<DetectedPair>& pairs,
                                                  const std::vector<FeBody>& bodies,
@@ -730,12 +749,10 @@ void ContactInterface::update_links_before_solve(const NodeSet& nodes,
     ev.activation_met = activation_met(ap, a, b);
     ev.erosion_met = erosion_met(ap, a.damage, b.damage);
     const LinkState after = next_link_state(before, ap.activation, ev);
+    if (after == LinkState::active) grow_bond(k, before != after, ev.touching, a, b, nodes, sph);
     if (after == before) continue;
     link_state_[k] = after;
-    if (after == LinkState::active) {
-      ++stats_.links_activated;
-      link_area_[k] = adhesive_area(k, link_face_[k], nodes.x, sph);
-    }
+    if (after == LinkState::active) ++stats_.links_activated;
     if (after == LinkState::eroded) ++stats_.links_eroded;
   }
 }

@@ -285,6 +285,9 @@ class ContactInterface {
   // Each side's surface expansion at the contact points `ids` (slave nodes):
   // the slave node's faces, the master face of its link, or the SPH
   // particle's share of its body's surface.
+  void grow_bond(int k, bool activated, bool pressed, const InterfaceSideState& a,
+                 const InterfaceSideState& b, const NodeSet& nodes,
+                 const std::vector<SphBody>& sph);
   void set_surface_expansion(InterfaceStates& out, const NodeSet& nodes,
                              const std::vector<int>& ids, const std::vector<SphBody>& sph) const;
   // The adhesion law of slave node k's link: the scene's, with the link's

@@ -28,6 +28,8 @@ AdhesionParams adhesion_from_json(const json& j) {
     p.surface_expansion = a->value("surface_expansion", 1.0);
     p.sides = a->value("sides", std::string("either")) == "both" ? ActivationSides::both
                                                                  : ActivationSides::either;
+    p.bonded_fraction = parse<BondedFraction>(a->value("bonded_fraction", std::string("full")))
+                            .value_or(BondedFraction::full);
   }
   return p;
 }
@@ -41,6 +43,7 @@ json adhesion_to_json(const AdhesionParams& p) {
   }
   if (p.activation == ActivationRule::surface_expansion) {
     activation["surface_expansion"] = p.surface_expansion;
+    activation["bonded_fraction"] = std::string(to_string(p.bonded_fraction));
   }
   return {{"G_c", p.G_c},
           {"sigma_c", p.cap_at_flow_stress ? json("flow-stress")

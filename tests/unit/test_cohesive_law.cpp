@@ -118,6 +118,31 @@ TEST(cohesive_law, activation_on_the_surface_expansion) {
   EXPECT_FALSE(activation_met(p, hot, film));
 }
 
+// Bay's film theory (1983): the metal exposed through the cracked films,
+// and with it the bond, rises linearly from none at the threshold Y' to the
+// whole area at Y = 1; each side's own film must crack with `both`.
+TEST(cohesive_law, bonded_fraction_of_the_cracked_films) {
+  AdhesionParams p;
+  p.activation = ActivationRule::surface_expansion;
+  p.surface_expansion = 0.3;
+  InterfaceSideState a, b;
+  a.surface_expansion = 0.65;
+  b.surface_expansion = 0.475;
+  EXPECT_EQ(bonded_fraction(p, a, b), 1.0);  // full: the whole area bonds
+  p.bonded_fraction = BondedFraction::film_cracks;
+  p.sides = ActivationSides::both;
+  EXPECT_NEAR(bonded_fraction(p, a, b), 0.25, 1e-12);  // (0.475 - 0.3) / 0.7
+  p.sides = ActivationSides::either;
+  EXPECT_NEAR(bonded_fraction(p, a, b), 0.5, 1e-12);  // (0.65 - 0.3) / 0.7
+  b.surface_expansion = 0.0;
+  a.surface_expansion = 0.2;
+  EXPECT_EQ(bonded_fraction(p, a, b), 0.0);  // below the threshold: no bond
+  a.surface_expansion = 1.0;
+  EXPECT_EQ(bonded_fraction(p, a, b), 1.0);
+  p.activation = ActivationRule::temperature;  // a rule without films
+  EXPECT_EQ(bonded_fraction(p, b, b), 1.0);
+}
+
 TEST(cohesive_law, erosion_on_either_side_only_with_a_limit) {
   AdhesionParams p;
   EXPECT_FALSE(erosion_met(p, 1.0, 1.0));  // no D_adh_max: never

@@ -105,11 +105,18 @@ TEST(two_mass_scene, adhesion_block_round_trips_every_field) {
   EXPECT_DOUBLE_EQ(q.yield_drop, p.yield_drop);
   EXPECT_EQ(q.sides, p.sides);
   EXPECT_EQ(q.D_adh_max, p.D_adh_max);
+  const AdhesionParams f = adhesion_from_json(json::parse(R"({"G_c": 30,
+      "activation": {"rule": "surface-expansion", "surface_expansion": 0.4,
+                     "bonded_fraction": "film-cracks"}})"));
+  EXPECT_EQ(f.bonded_fraction, BondedFraction::film_cracks);
+  EXPECT_EQ(adhesion_from_json(adhesion_to_json(f)).bonded_fraction, BondedFraction::film_cracks);
+  EXPECT_EQ(adhesion_from_json(adhesion_to_json(f)).surface_expansion, 0.4);
   // Defaults: no cap, no activation rule, never eroded.
   const AdhesionParams d = adhesion_from_json(json{{"G_c", 1.0}});
   EXPECT_FALSE(d.sigma_c.has_value());
   EXPECT_EQ(d.activation, ActivationRule::none);
   EXPECT_FALSE(d.D_adh_max.has_value());
+  EXPECT_EQ(d.bonded_fraction, BondedFraction::full);
 }
 
 TEST(two_mass_scene, bad_inputs_name_the_field_and_the_rule) {
