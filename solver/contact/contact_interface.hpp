@@ -282,12 +282,15 @@ class ContactInterface {
   // the mesh is refined.
   std::vector<DetectedPair> open_link_pairs(const std::vector<Vec3>& x,
                                             const std::vector<DetectedPair>& found) const;
-  // Each side's surface expansion at the contact points `ids` (slave nodes):
-  // the slave node's faces, the master face of its link, or the SPH
-  // particle's share of its body's surface.
+  // Sets the bonded area of active link k with sides a and b: on
+  // activation (`activated`) and, for a partial bonded fraction, while its
+  // pair is pressed.
   void grow_bond(int k, bool activated, bool pressed, const InterfaceSideState& a,
                  const InterfaceSideState& b, const NodeSet& nodes,
                  const std::vector<SphBody>& sph);
+  // Each side's surface expansion at the contact points `ids` (slave nodes):
+  // the slave node's faces, the master face of its link, or the SPH
+  // particle's share of its body's surface.
   void set_surface_expansion(InterfaceStates& out, const NodeSet& nodes,
                              const std::vector<int>& ids, const std::vector<SphBody>& sph) const;
   // The adhesion law of slave node k's link: the scene's, with the link's

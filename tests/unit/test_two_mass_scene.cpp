@@ -134,6 +134,10 @@ TEST(two_mass_scene, bad_inputs_name_the_field_and_the_rule) {
   doc["two_mass"]["adhesion"]["activation"]["drop_percent"] = 30;
   expect_violation(doc, "/two_mass/adhesion/activation/rule", "no yield stress");
 
+  // The films crack on the surface expansion: film-cracks reads no other rule.
+  doc["two_mass"]["adhesion"]["activation"]["bonded_fraction"] = "film-cracks";
+  expect_violation(doc, "/two_mass/adhesion/activation/rule", "must be \"surface-expansion\"");
+
   doc = two_mass_scene();
   doc["two_mass"]["adhesion"]["D_adh_max"] = 1.5;
   expect_violation(doc, "/two_mass/adhesion/D_adh_max", "must be <= 1 (-)");
