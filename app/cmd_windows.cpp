@@ -18,6 +18,7 @@
 #include "app/window_table.hpp"
 #include "campaign/manager.hpp"
 #include "campaign/queries.hpp"
+#include "campaign/spec.hpp"
 #include "solver/input/schema.hpp"
 
 namespace splat::app {
@@ -29,6 +30,16 @@ struct WindowsOptions {
   long long campaign = 0;
   std::string format = "table";
 };
+
+// The velocities of a stored campaign's grid; 0 when its spec no longer
+// reads (a store written by an older splat).
+std::size_t grid_velocities(const campaign::CampaignRecord& c) {
+  try {
+    return campaign::read_campaign(nlohmann::json::parse(c.spec)).velocities.size();
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
 
 int run_windows(const WindowsOptions& o) {
   if (!std::filesystem::exists(o.db)) {
@@ -63,7 +74,7 @@ int run_windows(const WindowsOptions& o) {
     std::printf("campaign %lld '%s' (%s): %s\n", static_cast<long long>(id), c->name.c_str(),
                 campaign::to_string(c->state), counts_text(store.job_counts(id)).c_str());
     print_windows_table(stdout, windows);
-    print_ladders_table(stdout, ladders);
+    print_ladders_table(stdout, ladders, grid_velocities(*c));
   }
   return 0;
 }

@@ -111,21 +111,25 @@ int run_and_print(campaign::CampaignSpec spec, const SweepRun& o) {
   std::fprintf(stderr, "campaign '%s' in %s: %zu velocities x %zu parameter sets, %d workers\n",
                spec.name.c_str(), o.db.c_str(), spec.velocities.size(),
                campaign::parameter_sets(spec).size(), mo.workers);
+  const auto start = std::chrono::steady_clock::now();
   const campaign::SweepReport r = campaign::run_sweep(store, spec, mo);
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printer->finish();
   std::fprintf(stderr,
                "campaign %lld %s: %s; %d started here, %d reused from the store, %d refinement "
-               "jobs\n",
+               "jobs; wall %.1f s on %d workers\n",
                static_cast<long long>(r.campaign_id), campaign::to_string(r.state),
-               counts_text(r.counts).c_str(), r.jobs_started, r.grid.jobs_reused,
-               r.refinement_jobs);
+               counts_text(r.counts).c_str(), r.jobs_started, r.grid.jobs_reused, r.refinement_jobs,
+               wall, mo.workers);
   if (o.format == "json") {
     std::printf("%s\n", windows_json(r.windows).dump(2).c_str());
   } else {
     print_windows_table(stdout, r.windows);
     print_ladders_table(stdout,
                         campaign::resolution_ladders(
-                            r.windows, campaign::cost_by_parameter_set(store, r.campaign_id)));
+                            r.windows, campaign::cost_by_parameter_set(store, r.campaign_id)),
+                        spec.velocities.size());
   }
   return r.state == campaign::CampaignState::finished ? 0 : 3;
 }

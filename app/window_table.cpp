@@ -92,9 +92,26 @@ std::string ladder_edge_text(const campaign::LadderEdge& e) {
   return s + ")";
 }
 
+// The ladder's jobs against every level run on the campaign's grid: at least
+// the grid at every level, and about the coarsest level's jobs (its grid and
+// refinement) at every level.
+void print_ladder_saving(std::FILE* out, const campaign::Ladder& l, std::size_t grid_velocities) {
+  if (grid_velocities == 0 || l.cost.empty()) return;
+  int jobs = 0;
+  for (const campaign::LevelCost& c : l.cost) jobs += c.jobs;
+  const double levels = static_cast<double>(l.levels.size());
+  const double grid_only = static_cast<double>(grid_velocities) * levels;
+  const double as_coarsest = std::max(grid_only, l.cost.front().jobs * levels);
+  std::fprintf(out,
+               "  jobs %d; every level on the grid of %zu velocities: at least %.0f, about %.0f "
+               "refined as the coarsest (%.0f %% of it)\n",
+               jobs, grid_velocities, grid_only, as_coarsest, 100.0 * jobs / as_coarsest);
+}
+
 }  // namespace
 
-void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& ladders) {
+void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& ladders,
+                         std::size_t grid_velocities) {
   for (const campaign::Ladder& l : ladders) {
     std::string params = l.params.dump();
     if (params == "{}") params = "(base scene)";
@@ -108,6 +125,7 @@ void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& la
     }
     std::fprintf(out, "  critical velocity %s\n", ladder_edge_text(l.critical).c_str());
     std::fprintf(out, "  maximum velocity  %s\n", ladder_edge_text(l.maximum).c_str());
+    print_ladder_saving(out, l, grid_velocities);
   }
 }
 

@@ -21,9 +21,12 @@ void print_windows_table(std::FILE* out, const std::vector<campaign::WindowRecor
 void print_windows_csv(std::FILE* out, const std::vector<campaign::WindowRecord>& windows);
 
 // The resolution ladders (campaign/ladders.hpp): per ladder, each level's
-// edges and cost, then each edge's value, error and status. Nothing when the
-// windows hold no ladder.
-void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& ladders);
+// edges and cost, then each edge's value, error and status, and with
+// `grid_velocities` (the campaign's velocity grid; 0: not known) the jobs of
+// the ladder against the fewest that gridding every level would take.
+// Nothing when the windows hold no ladder.
+void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& ladders,
+                         std::size_t grid_velocities = 0);
 
 // "12 jobs: 10 succeeded, 1 failed, 1 timed-out"
 std::string counts_text(const campaign::JobCounts& c);

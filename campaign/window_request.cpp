@@ -65,7 +65,10 @@ json bonding_model(double G_c) {
   return {{"G_c", G_c},
           {"sigma_c", "flow-stress"},
           {"activation",
-           {{"rule", "surface-expansion"}, {"surface_expansion", 0.3}, {"sides", "both"}}},
+           {{"rule", "surface-expansion"},
+            {"surface_expansion", 0.3},
+            {"sides", "both"},
+            {"bonded_fraction", "film-cracks"}}},
           {"averaging_length", 2e-6},
           {"D_adh_max", nullptr}};
 }

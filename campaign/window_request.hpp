@@ -30,8 +30,9 @@ VelocityRange parse_velocity_range(const std::string& text);
 
 // splat's bonding model (as scenes/impact_al_al_expansion.json): links
 // capped at the weaker side's flow stress, activated where the surfaces of
-// both sides have grown to Bay's surface expansion 0.3, never eroded; G_c
-// in J/m^2.
+// both sides have grown to Bay's surface expansion 0.3, each bonding only
+// the metal exposed through the cracked films (film-cracks), never eroded;
+// G_c in J/m^2.
 nlohmann::json bonding_model(double G_c);
 
 // The campaign document of a request: axisymmetric FE impacts, the velocity

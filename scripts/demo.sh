@@ -25,7 +25,8 @@ echo "For k = 0 the edge is sqrt(2 G_c A (M + m) / (M m)) = 0.5477, 0.7746, 1.09
 echo "G_c = 0.1, 0.2, 0.4 J/m^2 (M = 1 kg, m = 2 kg, A = 1 m^2), whatever the cap; compare the"
 echo "k = 0 rows above. With k = 0.5 N/m the cap matters."
 echo
-# The same machinery on real impacts: critical velocity of Al on Al
-# (axisymmetric FE, 8 elements across, links activated on the interface
-# temperature; 42 jobs, a few seconds).
+# The same machinery on real impacts: the window of Al on Al against G_c
+# (axisymmetric FE, 16 elements across, links activated on Bay's surface
+# expansion, bonding the metal through the cracked films; 46 jobs, about a
+# minute on 2 cores).
 "$splat" sweep "$here/campaigns/demo_impact_al_al.json" --db "$out/campaign.db" --workers 2

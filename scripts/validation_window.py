@@ -32,8 +32,18 @@ REFERENCES = {
         "measured": (800.0, 752.0, 1066.0, "[PNAS25] v_cr; [NC24] rebound 752, bond 1066"),
         "correlations": {"Assadi 2003": 685.0, "Schmidt 2006": 607.0},
     },
-    ("cu-thesis", "cu-thesis"): {
+    ("al1100-o-jc", "al1100-o-jc"): {
+        "label": "Al 1100-O on Al 1100-O",
+        "measured": (800.0, 752.0, 1066.0, "[PNAS25] v_cr; [NC24] rebound 752, bond 1066"),
+        "correlations": {"Assadi 2003": 685.0, "Schmidt 2006": 607.0},
+    },
+    ("cu-ofhc-jc", "cu-ofhc-jc"): {
         "label": "Cu (Johnson-Cook) on Cu",
+        "measured": None,
+        "correlations": {"Assadi 2003": 642.0, "Schmidt 2006": 491.0},
+    },
+    ("cu-thesis", "cu-thesis"): {
+        "label": "Cu (thesis Johnson-Cook) on Cu",
         "measured": None,
         "correlations": {"Assadi 2003": 642.0, "Schmidt 2006": 491.0},
     },
@@ -44,7 +54,7 @@ REFERENCES = {
     },
 }
 MATERIAL_POINTER = "/particle_impact/particle/material"
-DEFAULT_MATERIAL = "al-thesis-gf"  # scenes/impact_al_al.json
+DEFAULT_MATERIAL = "al-thesis-gf"  # scenes/impact_al_al_expansion.json
 
 
 def load_ladders(source, splat):
@@ -75,13 +85,18 @@ def level_text(levels):
     return " / ".join(cells)
 
 
+def edge_text(edge):
+    value, error = edge.get("value"), edge.get("error")
+    return "open" if value is None else f"{value:.0f} +- {error:.0f} ({edge['status']})"
+
+
 def table_rows(ladders):
     rows = []
     for ladder in ladders:
         pair = pair_of(ladder)
         ref = REFERENCES.get(pair, {"label": f"{pair[0]} on {pair[1]}", "measured": None,
                                     "correlations": {}})
-        crit = ladder["critical"]
+        crit, maxi = ladder["critical"], ladder["maximum"]
         measured = ref["measured"]
         value, error = crit.get("value"), crit.get("error")
         gap = None if measured is None or value is None else value / measured[0]
@@ -89,7 +104,8 @@ def table_rows(ladders):
             "label": ref["label"],
             "levels": "/".join(f"{lv:g}" for lv in ladder["levels"]),
             "per_level": level_text(crit["levels"]),
-            "splat": "open" if value is None else f"{value:.0f} +- {error:.0f} ({crit['status']})",
+            "splat": edge_text(crit),
+            "maximum": edge_text(maxi),
             "measured": "not found" if measured is None
             else f"{measured[0]:.0f} [{measured[1]:.0f}, {measured[2]:.0f}] {measured[3]}",
             "correlations": ", ".join(f"{k} {v:.0f}" for k, v in ref["correlations"].items()),
@@ -102,12 +118,14 @@ def table_rows(ladders):
 def write_markdown(rows, path):
     lines = [
         "| pair | elements across | splat critical velocity per level, m/s | splat estimate, m/s "
-        "| measured, m/s | correlations, m/s | splat / measured | jobs |",
-        "| --- | --- | --- | --- | --- | --- | --- | --- |",
+        "| measured, m/s | correlations, m/s | splat / measured | splat maximum velocity, m/s "
+        "| jobs |",
+        "| --- | --- | --- | --- | --- | --- | --- | --- | --- |",
     ]
     for r in rows:
         lines.append(f"| {r['label']} | {r['levels']} | {r['per_level']} | {r['splat']} | "
-                     f"{r['measured']} | {r['correlations']} | {r['ratio']} | {r['jobs']} |")
+                     f"{r['measured']} | {r['correlations']} | {r['ratio']} | {r['maximum']} | "
+                     f"{r['jobs']} |")
     text = "\n".join(lines) + "\n"
     if path:
         with open(path, "w", encoding="utf-8") as f:

@@ -265,7 +265,7 @@ TEST(campaign_sweep, window_command_from_a_material_pair) {
   TempDir t;
   const std::string db = (t.path / "w.db").string();
   const std::string cmd =
-      "window --particle al-thesis --velocity 200:500:100 --workers 2 --db " + db;
+      "window --particle al-thesis --velocity 300:700:100 --workers 2 --db " + db;
   auto o = run_splat(cmd);
   ASSERT_EQ(o.code, 0) << o.stdout_text;
   EXPECT_NE(o.stdout_text.find("critical velocity m/s"), std::string::npos) << o.stdout_text;

@@ -12,7 +12,7 @@ import subprocess
 import sys
 
 
-def ladder(material, values, status, value, error):
+def ladder(material, values, status, value, error, maximum=None):
     levels = [{"estimate": v, "half_width": 5.0} for v in values]
     params = {} if material is None else {"/particle_impact/particle/material": material}
     return {
@@ -22,8 +22,10 @@ def ladder(material, values, status, value, error):
                  {"jobs": 4, "job_seconds": 8.0}],
         "critical": {"levels": levels, "status": status, "value": value, "error": error,
                      "order": None},
-        "maximum": {"levels": [{"estimate": None, "half_width": None}] * 3, "status": "open",
-                    "value": None, "error": None, "order": None},
+        "maximum": {"levels": [{"estimate": None, "half_width": None}] * 3,
+                    "status": "open" if maximum is None else "extrapolated",
+                    "value": None if maximum is None else maximum[0],
+                    "error": None if maximum is None else maximum[1], "order": None},
     }
 
 
@@ -33,7 +35,8 @@ def main(source, work):
     path = os.path.join(work, "ladders.json")
     with open(path, "w", encoding="utf-8") as f:
         json.dump([ladder(None, [280.0, 290.0, 270.0], "not-converged", 270.0, 30.0),
-                   ladder("cu-thesis", [600.0, 620.0, 630.0], "extrapolated", 640.0, 12.0)], f)
+                   ladder("cu-ofhc-jc", [600.0, 620.0, 630.0], "extrapolated", 640.0, 12.0,
+                          (900.0, 20.0))], f)
     md, png = os.path.join(work, "table.md"), os.path.join(work, "window.png")
     out = subprocess.run([sys.executable, os.path.join(source, "scripts", "validation_window.py"),
                           "--out-md", md, "--out-png", png, path],
@@ -46,9 +49,10 @@ def main(source, work):
     assert "280 +- 5 / 290 +- 5 / 270 +- 5" in al, al
     assert "270 +- 30 (not-converged)" in al, al
     assert "800 [752, 1066]" in al and "[PNAS25]" in al, al
-    assert "| 0.34 |" in al and "| 20 |" in al, al
+    assert "| 0.34 | open | 20 |" in al, al
     cu = next(r for r in rows if r.startswith("| Cu (Johnson-Cook) on Cu |"))
     assert "640 +- 12 (extrapolated)" in cu and "not found" in cu, cu
+    assert "| 900 +- 20 (extrapolated) |" in cu, cu
     assert "Schmidt 2006 491" in cu and "| - |" in cu, cu
     with open(md, encoding="utf-8") as f:
         assert f.read() == out
