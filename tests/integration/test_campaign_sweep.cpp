@@ -203,6 +203,14 @@ TEST(campaign_sweep, a_resolution_field_gives_a_ladder) {
   EXPECT_NE(o.stdout_text.find("resolution ladder /particle_impact/particle/elements_across"),
             std::string::npos)
       << o.stdout_text;
+  // Its cost against every level run on the grid (2 velocities x 2 levels,
+  // no refinement): the sweep knows the grid, `windows` reads it back from
+  // the stored spec.
+  const std::string cost =
+      "jobs 4; every level on the grid of 2 velocities: at least 4, about 4 refined as the "
+      "coarsest (100 % of it)";
+  EXPECT_NE(o.stdout_text.find(cost), std::string::npos) << o.stdout_text;
+  EXPECT_NE(run_splat("windows --db " + db).stdout_text.find(cost), std::string::npos);
   o = run_splat("windows --db " + db + " --format ladders");
   ASSERT_EQ(o.code, 0) << o.stdout_text;
   const json ladders = json::parse(o.stdout_text);
