@@ -87,7 +87,7 @@ json window_campaign(const WindowRequest& r) {
                  {{"particle",
                    {{"material", r.particle},
                     {"radius", r.radius},
-                    {"elements_across", 8},
+                    {"elements_across", 16},
                     {"discretization", "fe"}}},
                   {"substrate", {{"material", substrate}}},
                   {"velocity", r.velocity.from},
@@ -102,7 +102,7 @@ json window_campaign(const WindowRequest& r) {
                           " m/s, axisymmetric FE with splat's bonding model (G_c " + number(r.G_c) +
                           " J/m^2), edges refined to " + number(tolerance) + " m/s" +
                           (converged ? " at 16, 32 and 48 elements across (coarse to fine)"
-                                     : " at 8 elements across") +
+                                     : " at 16 elements across") +
                           "."},
       {"tags", {"window"}},
       {"base_scene", scene},

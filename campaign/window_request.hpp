@@ -20,7 +20,7 @@ struct WindowRequest {
   std::string substrate;          // empty: the particle's material
   double radius = 12.5e-6;        // m
   VelocityRange velocity;         // grid of the coarsest level
-  std::string accuracy = "fast";  // fast: 8 elements across; converged: 16, 32, 48 coarse to fine
+  std::string accuracy = "fast";  // fast: 16 elements across; converged: 16, 32, 48 coarse to fine
   double G_c = 30.0;              // J/m^2
 };
 

@@ -58,6 +58,8 @@ TEST(campaign_window_request, fast_is_one_level_converged_a_coarse_to_fine_ladde
   EXPECT_EQ(ladder_axis(fast), nullptr);
   EXPECT_DOUBLE_EQ(fast.refinement->tolerance, 25.0);
   EXPECT_EQ(fast.base_scene.at("/particle_impact/substrate/material"_json_pointer), "al-thesis");
+  // fast runs the first level of converged, whose jobs are then reused.
+  EXPECT_EQ(fast.base_scene.at("/particle_impact/particle/elements_across"_json_pointer), 16);
 
   r.accuracy = "converged";
   const CampaignSpec fine = read_campaign(window_campaign(r), k_source);
