@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Runs the validation campaigns (campaigns/validation/: Al on Al, Cu on Cu
-# with two strength laws; axisymmetric FE, 8 / 16 / 32 elements across,
-# coarse to fine) and writes their critical velocities against the
-# measurements and correlations of docs/validation_sources.md:
+# Runs the validation campaigns (campaigns/validation/: Al on Al with two
+# aluminium sets, Cu on Cu; scenes/impact_al_al_expansion.json's bonding
+# model, axisymmetric FE, 8 / 16 / 32 elements across, coarse to fine;
+# about 9 minutes on 2 cores after the build) and writes their critical
+# velocities against the measurements and correlations of
+# docs/validation_sources.md:
 # docs/validation_window.md (table) and docs/validation_window.png (plot).
 # Stores stay in out/validation/ (run again: every job is reused).
 set -euo pipefail

@@ -23,12 +23,12 @@ import sys
 # docs/validation_sources.md.
 REFERENCES = {
     ("al-thesis", "al-thesis"): {
-        "label": "Al on Al, thesis damage (eased)",
+        "label": "Al on Al, thesis aluminium, eased damage (al-thesis)",
         "measured": (800.0, 752.0, 1066.0, "[PNAS25] v_cr; [NC24] rebound 752, bond 1066"),
         "correlations": {"Assadi 2003": 685.0, "Schmidt 2006": 607.0},
     },
     ("al-thesis-gf", "al-thesis-gf"): {
-        "label": "Al on Al, damage on a fracture energy",
+        "label": "Al on Al, thesis aluminium (al-thesis-gf)",
         "measured": (800.0, 752.0, 1066.0, "[PNAS25] v_cr; [NC24] rebound 752, bond 1066"),
         "correlations": {"Assadi 2003": 685.0, "Schmidt 2006": 607.0},
     },

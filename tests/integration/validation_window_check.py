@@ -43,7 +43,7 @@ def main(source, work):
                          check=True, capture_output=True, text=True).stdout
     rows = [line for line in out.splitlines() if line.startswith("| ") and "---" not in line]
     assert len(rows) == 3, out
-    al = next(r for r in rows if r.startswith("| Al on Al, damage on a fracture energy |"))
+    al = next(r for r in rows if r.startswith("| Al on Al, thesis aluminium (al-thesis-gf) |"))
     # The scene's own material (no material field) is al-thesis-gf: Al on
     # Al, measured 800 m/s [PNAS25]; 270 / 800 = 0.34.
     assert "280 +- 5 / 290 +- 5 / 270 +- 5" in al, al
