@@ -28,8 +28,15 @@ AdhesionParams adhesion_from_json(const json& j) {
     p.surface_expansion = a->value("surface_expansion", 1.0);
     p.sides = a->value("sides", std::string("either")) == "both" ? ActivationSides::both
                                                                  : ActivationSides::either;
-    p.bonded_fraction = parse<BondedFraction>(a->value("bonded_fraction", std::string("full")))
-                            .value_or(BondedFraction::full);
+    // The films crack on the surface expansion, so that rule bonds the
+    // metal through the cracks unless the scene says otherwise.
+    const BondedFraction by_default = p.activation == ActivationRule::surface_expansion
+                                          ? BondedFraction::film_cracks
+                                          : BondedFraction::full;
+    p.bonded_fraction = a->contains("bonded_fraction")
+                            ? parse<BondedFraction>(a->at("bonded_fraction").get<std::string>())
+                                  .value_or(by_default)
+                            : by_default;
   }
   return p;
 }

@@ -111,6 +111,16 @@ TEST(two_mass_scene, adhesion_block_round_trips_every_field) {
   EXPECT_EQ(f.bonded_fraction, BondedFraction::film_cracks);
   EXPECT_EQ(adhesion_from_json(adhesion_to_json(f)).bonded_fraction, BondedFraction::film_cracks);
   EXPECT_EQ(adhesion_from_json(adhesion_to_json(f)).surface_expansion, 0.4);
+  // The surface-expansion rule bonds the film cracks unless told full; the
+  // other rules bond whole links.
+  const AdhesionParams cracks = adhesion_from_json(json::parse(
+      R"({"G_c": 30, "activation": {"rule": "surface-expansion", "surface_expansion": 0.4}})"));
+  EXPECT_EQ(cracks.bonded_fraction, BondedFraction::film_cracks);
+  const AdhesionParams whole = adhesion_from_json(json::parse(R"({"G_c": 30,
+      "activation": {"rule": "surface-expansion", "surface_expansion": 0.4,
+                     "bonded_fraction": "full"}})"));
+  EXPECT_EQ(whole.bonded_fraction, BondedFraction::full);
+  EXPECT_EQ(adhesion_from_json(adhesion_to_json(whole)).bonded_fraction, BondedFraction::full);
   // Defaults: no cap, no activation rule, never eroded.
   const AdhesionParams d = adhesion_from_json(json{{"G_c", 1.0}});
   EXPECT_FALSE(d.sigma_c.has_value());
