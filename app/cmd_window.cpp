@@ -40,7 +40,8 @@ int run_window(WindowOptions o) {
   if (o.request.accuracy == "fast") {
     std::printf(
         "\nerror bars: the brackets only (16 elements across); --accuracy converged adds "
-        "the error from resolution (16, 32, 48 elements across), reusing these jobs.\n");
+        "the error from resolution (16, 32, 48 elements across), reusing these jobs "
+        "with the same splat build.\n");
   }
   std::printf(
       "\nstored in %s (job results under %s.jobs/): `splat windows --db %s --format "

@@ -23,7 +23,8 @@ void print_windows_csv(std::FILE* out, const std::vector<campaign::WindowRecord>
 // The resolution ladders (campaign/ladders.hpp): per ladder, each level's
 // edges and cost, then each edge's value, error and status, and with
 // `grid_velocities` (the campaign's velocity grid; 0: not known) the jobs of
-// the ladder against the fewest that gridding every level would take.
+// the ladder against two estimates of gridding every level: the grid alone
+// (a lower bound) and the coarsest level's jobs at every level.
 // Nothing when the windows hold no ladder.
 void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& ladders,
                          std::size_t grid_velocities = 0);

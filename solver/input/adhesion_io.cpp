@@ -33,10 +33,9 @@ AdhesionParams adhesion_from_json(const json& j) {
     const BondedFraction by_default = p.activation == ActivationRule::surface_expansion
                                           ? BondedFraction::film_cracks
                                           : BondedFraction::full;
-    p.bonded_fraction = a->contains("bonded_fraction")
-                            ? parse<BondedFraction>(a->at("bonded_fraction").get<std::string>())
-                                  .value_or(by_default)
-                            : by_default;
+    p.bonded_fraction =
+        parse<BondedFraction>(a->value("bonded_fraction", std::string(to_string(by_default))))
+            .value_or(by_default);
   }
   return p;
 }
