@@ -31,13 +31,13 @@ struct WindowsOptions {
   std::string format = "table";
 };
 
-// The velocities of a stored campaign's grid; 0 when its spec no longer
-// reads (a store written by an older splat).
-std::size_t grid_velocities(const campaign::CampaignRecord& c) {
+// The grid of a stored campaign; unknown when its spec no longer reads (a
+// store written by an older splat).
+LadderGrid stored_grid(const campaign::CampaignRecord& c) {
   try {
-    return campaign::read_campaign(nlohmann::json::parse(c.spec)).velocities.size();
+    return ladder_grid(campaign::read_campaign(nlohmann::json::parse(c.spec)));
   } catch (const std::exception&) {
-    return 0;
+    return {};
   }
 }
 
@@ -74,7 +74,7 @@ int run_windows(const WindowsOptions& o) {
     std::printf("campaign %lld '%s' (%s): %s\n", static_cast<long long>(id), c->name.c_str(),
                 campaign::to_string(c->state), counts_text(store.job_counts(id)).c_str());
     print_windows_table(stdout, windows);
-    print_ladders_table(stdout, ladders, grid_velocities(*c));
+    print_ladders_table(stdout, ladders, stored_grid(*c));
   }
   return 0;
 }

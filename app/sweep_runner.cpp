@@ -129,7 +129,7 @@ int run_and_print(campaign::CampaignSpec spec, const SweepRun& o) {
     print_ladders_table(stdout,
                         campaign::resolution_ladders(
                             r.windows, campaign::cost_by_parameter_set(store, r.campaign_id)),
-                        spec.velocities.size());
+                        ladder_grid(spec));
   }
   return r.state == campaign::CampaignState::finished ? 0 : 3;
 }

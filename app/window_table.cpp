@@ -1,6 +1,7 @@
 #include "app/window_table.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "campaign/window_rows.hpp"
 
@@ -92,26 +93,45 @@ std::string ladder_edge_text(const campaign::LadderEdge& e) {
   return s + ")";
 }
 
-// The ladder's jobs against every level run on the campaign's grid: at least
-// the grid at every level, and about the coarsest level's jobs (its grid and
-// refinement) at every level.
-void print_ladder_saving(std::FILE* out, const campaign::Ladder& l, std::size_t grid_velocities) {
-  if (grid_velocities == 0 || l.cost.empty()) return;
+// The ladder's jobs against every level gridded: at the tolerance over the
+// grid's range, and on the campaign's grid (at least the grid at every
+// level, about the coarsest level's jobs at every level).
+void print_ladder_saving(std::FILE* out, const campaign::Ladder& l, const LadderGrid& grid) {
+  if (grid.velocities == 0 || l.cost.empty()) return;
   int jobs = 0;
   for (const campaign::LevelCost& c : l.cost) jobs += c.jobs;
   const double levels = static_cast<double>(l.levels.size());
-  const double grid_only = static_cast<double>(grid_velocities) * levels;
+  std::fprintf(out, "  jobs %d; every level gridded:", jobs);
+  if (grid.tolerance > 0.0 && grid.to > grid.from) {
+    const double per_level = std::floor((grid.to - grid.from) / grid.tolerance + 1e-9) + 1.0;
+    std::fprintf(out, " at the %s m/s tolerance over %s-%s m/s %.0f (this ladder %.0f %%);",
+                 number(json(grid.tolerance)).c_str(), number(json(grid.from)).c_str(),
+                 number(json(grid.to)).c_str(), per_level * levels,
+                 100.0 * jobs / (per_level * levels));
+  }
+  const double grid_only = static_cast<double>(grid.velocities) * levels;
   const double as_coarsest = std::max(grid_only, l.cost.front().jobs * levels);
   std::fprintf(out,
-               "  jobs %d; every level on the grid of %zu velocities: at least %.0f, about %.0f "
-               "refined as the coarsest (%.0f %% of it)\n",
-               jobs, grid_velocities, grid_only, as_coarsest, 100.0 * jobs / as_coarsest);
+               " on the %zu velocities at least %.0f, about %.0f refined as the coarsest "
+               "(this ladder %.0f %%)\n",
+               grid.velocities, grid_only, as_coarsest, 100.0 * jobs / as_coarsest);
 }
 
 }  // namespace
 
+LadderGrid ladder_grid(const campaign::CampaignSpec& spec) {
+  LadderGrid g;
+  g.velocities = spec.velocities.size();
+  if (spec.velocities.empty()) return g;
+  const auto [lo, hi] = std::minmax_element(spec.velocities.begin(), spec.velocities.end());
+  g.from = *lo;
+  g.to = *hi;
+  if (spec.refinement) g.tolerance = spec.refinement->tolerance;
+  return g;
+}
+
 void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& ladders,
-                         std::size_t grid_velocities) {
+                         const LadderGrid& grid) {
   for (const campaign::Ladder& l : ladders) {
     std::string params = l.params.dump();
     if (params == "{}") params = "(base scene)";
@@ -125,7 +145,7 @@ void print_ladders_table(std::FILE* out, const std::vector<campaign::Ladder>& la
     }
     std::fprintf(out, "  critical velocity %s\n", ladder_edge_text(l.critical).c_str());
     std::fprintf(out, "  maximum velocity  %s\n", ladder_edge_text(l.maximum).c_str());
-    print_ladder_saving(out, l, grid_velocities);
+    print_ladder_saving(out, l, grid);
   }
 }
 

@@ -109,11 +109,12 @@ std::optional<double> nearest_beyond(const SeedContext& c, const std::vector<dou
 
 // Seeds of one closed coarse edge with bracket [lo, hi]; `below` is the
 // verdict on its low side (rebound for a lower edge, stick for an upper one).
-std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, double band,
-                               Verdict below) {
+// The fine level runs the bracket's two ends; the guard band about its own
+// edge comes from its own refinement, once that edge is bracketed.
+std::vector<double> edge_seeds(const SeedContext& c, double lo, double hi, Verdict below) {
   std::vector<double> out;
-  for (double v : c.coarse) {
-    if (v >= lo - band && v <= hi + band && !c.run(v)) out.push_back(v);
+  for (double v : {lo, hi}) {
+    if (!c.run(v)) out.push_back(v);
   }
   if (!out.empty() || c.fine.empty()) return out;
   const double mid = 0.5 * (lo + hi);
@@ -215,7 +216,7 @@ std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::ve
       }
       const double a = *edge->rebound_velocity, b = edge->stick_velocity;
       const double lo = std::min(a, b), hi = std::max(a, b);
-      const std::vector<double> walk = edge_seeds(c, lo, hi, guard_band, below);
+      const std::vector<double> walk = edge_seeds(c, lo, hi, below);
       add(walk.empty() ? island_probes(c, lo, hi, below, coarse_classified, probe_unit) : walk);
     }
   }
@@ -249,8 +250,11 @@ LadderStep coarse_to_fine_step(const std::vector<std::vector<Sample>>& levels, d
       std::vector<double> seeds = level_seeds(levels[i - 1], levels[i], guard_band, coarser);
       if (!seeds.empty()) return {i, std::move(seeds)};
     }
-    std::vector<double> points =
-        refinement_points(compute_window(levels[i]), tolerance, guard_band);
+    // The guard band is sampled at the finest level only: an island a
+    // coarser mesh shows beside its edge would only be followed, at every
+    // finer level, by edges that mesh does not have.
+    const double band = i + 1 == levels.size() ? guard_band : 0.0;
+    std::vector<double> points = refinement_points(compute_window(levels[i]), tolerance, band);
     if (!points.empty()) return {i, std::move(points)};
   }
   return {};

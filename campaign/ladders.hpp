@@ -81,12 +81,14 @@ std::vector<Ladder> resolution_ladders(const std::vector<WindowRecord>& windows,
 // next coarser level found. `coarse` and `fine` are the samples of two
 // neighbouring levels (same parameters otherwise); the coarse velocities are
 // the candidates. For each edge of the coarse window:
-// - its bracket ends and the coarse samples within `guard_band` (m/s) of it
-//   not yet run at the fine level;
+// - its bracket's two ends, where the fine level has not run them;
 // - once those ran: the fine sample nearest the bracket is followed through
 //   samples of its verdict away from it until the opposite verdict turns up
-//   (the fine edge); if it does not, the next coarse velocity beyond is
-//   returned (the edge moved by more than the band under refinement).
+//   (the fine edge); if it does not, a velocity at twice the distance
+//   covered from the bracket (the edge moved under refinement);
+// - once the fine edge is bracketed: island probes on the coarse edge's
+//   rebound side, spaced from half the coarse grid step or `guard_band`
+//   (m/s), whichever is wider.
 // An open coarse edge gets the swept range's end on its side and the coarse
 // level's outermost stick there; an edge open at the fine level while coarse
 // samples lie beyond it gets the nearest of them, or, with none there, the

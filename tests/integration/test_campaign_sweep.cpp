@@ -207,8 +207,8 @@ TEST(campaign_sweep, a_resolution_field_gives_a_ladder) {
   // no refinement): the sweep knows the grid, `windows` reads it back from
   // the stored spec.
   const std::string cost =
-      "jobs 4; every level on the grid of 2 velocities: at least 4, about 4 refined as the "
-      "coarsest (100 % of it)";
+      "jobs 4; every level gridded: on the 2 velocities at least 4, about 4 refined as the "
+      "coarsest (this ladder 100 %)";
   EXPECT_NE(o.stdout_text.find(cost), std::string::npos) << o.stdout_text;
   EXPECT_NE(run_splat("windows --db " + db).stdout_text.find(cost), std::string::npos);
   o = run_splat("windows --db " + db + " --format ladders");
@@ -265,6 +265,15 @@ TEST(campaign_sweep, coarse_to_fine_runs_the_finer_level_near_the_edges) {
     ASSERT_TRUE(level.at("estimate").is_number()) << l.dump(2);
     EXPECT_LE(level.at("half_width").get<double>(), 12.5);
   }
+  // Against both levels on a grid at the tolerance: 21 velocities from 100
+  // to 600 m/s at 25 m/s, times 2 levels.
+  const int jobs = l.at("cost")[0].at("jobs").get<int>() + l.at("cost")[1].at("jobs").get<int>();
+  char line[128];
+  std::snprintf(line, sizeof line,
+                "jobs %d; every level gridded: at the 25 m/s tolerance over 100-600 m/s 42 "
+                "(this ladder %.0f %%)",
+                jobs, 100.0 * jobs / 42.0);
+  EXPECT_NE(run_splat("windows --db " + db).stdout_text.find(line), std::string::npos) << line;
 }
 
 // `splat window`: from a material pair to a window in one command; the same

@@ -273,3 +273,27 @@ TEST(campaign_ladders, coarse_to_fine_checks_open_edges_at_the_range_end) {
   EXPECT_TRUE(w.intervals.empty());
   EXPECT_EQ(w.rebounds, static_cast<int>(levels[1].size()));
 }
+
+// The guard band is sampled at the finest level only. Both levels stick in
+// [340, 790) m/s and in an island [324, 331) beside the lower edge, on a
+// 100 m/s grid 200-1000, tolerance 10, band 20: the coarse level runs its
+// grid and the bisection of its two edges (4 halvings of 100 m/s each), the
+// finest level splits the band about its edges to the tolerance and finds
+// the island.
+TEST(campaign_ladders, the_guard_band_is_sampled_at_the_finest_level_only) {
+  const IslandWindow truth{{340, 790}, {324, 331}};
+  std::vector<std::vector<Sample>> levels(2);
+  for (double v : grid_200_to_1000()) levels[0].push_back(truth.at(v));
+  int round = 0;
+  for (; round < 200; ++round) {
+    const LadderStep step = coarse_to_fine_step(levels, 10.0, 20.0);
+    if (step.velocities.empty()) break;
+    for (double v : step.velocities) levels[step.level].push_back(truth.at(v));
+  }
+  ASSERT_LT(round, 200);
+  EXPECT_EQ(levels[0].size(), grid_200_to_1000().size() + 2 * 4);
+  const Window fine = compute_window(levels[1]);
+  ASSERT_EQ(fine.intervals.size(), 2u);
+  EXPECT_NEAR(*fine.critical_velocity, 324.0, 10.0);
+  std::printf("  coarse %zu jobs, fine %zu jobs\n", levels[0].size(), levels[1].size());
+}
