@@ -5,6 +5,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "campaign/ladders.hpp"
 #include "campaign/spec.hpp"
 
 namespace splat::campaign {
@@ -34,6 +35,61 @@ json row_of(const WindowRecord& w) {
           {"unclassified", doc.at("unclassified").size()}};
 }
 
+json ladder_edge_row(const LadderEdge& e) {
+  auto number = [](const std::optional<double>& x) { return x ? json(*x) : json(nullptr); };
+  return {{"status", to_string(e.status)}, {"value", number(e.value)}, {"error", number(e.error)}};
+}
+
+// A ladder's key: its parameters without the resolution field, and the field.
+std::string ladder_key(const json& params, const std::string& pointer) {
+  return canonical_text(params) + " " + pointer;
+}
+
+json ladder_row(const Ladder& l) {
+  return {{"params", l.params},
+          {"pointer", l.pointer},
+          {"levels", l.levels},
+          {"critical", ladder_edge_row(l.critical)},
+          {"maximum", ladder_edge_row(l.maximum)}};
+}
+
+bool within(const json& x, const json& y, double tol) {
+  if (x.is_null() || y.is_null()) return x.is_null() == y.is_null();
+  return std::abs(x.get<double>() - y.get<double>()) <= tol;
+}
+
+// Each edge's status, value and error from resolution against the baseline's.
+void compare_ladders(const json& baseline, const std::vector<WindowRecord>& windows, double tol,
+                     RegressionReport& r) {
+  std::map<std::string, json> current;
+  for (const Ladder& l : resolution_ladders(windows)) {
+    current[ladder_key(l.params, l.pointer)] = ladder_row(l);
+  }
+  for (const json& b : baseline) {
+    const std::string key = ladder_key(b.at("params"), b.at("pointer").get<std::string>());
+    const auto it = current.find(key);
+    if (it == current.end()) {
+      r.checks.push_back({key, "ladder", "yes", "no", false});
+      continue;
+    }
+    for (const char* edge : {"critical", "maximum"}) {
+      const json& x = b.at(edge);
+      const json& y = it->second.at(edge);
+      const std::string name = std::string("ladder ") + edge;
+      r.checks.push_back({key, name + " status", x.at("status").get<std::string>(),
+                          y.at("status").get<std::string>(), x.at("status") == y.at("status")});
+      for (const char* figure : {"value", "error"}) {
+        r.checks.push_back({key, name + " " + figure, text_of(x.at(figure)), text_of(y.at(figure)),
+                            within(x.at(figure), y.at(figure), tol)});
+      }
+    }
+    current.erase(it);
+  }
+  for (const auto& [key, row] : current) {
+    r.checks.push_back({key, "ladder", "no", "yes (not in the baseline)", false});
+  }
+}
+
 }  // namespace
 
 bool RegressionReport::drift() const {
@@ -47,10 +103,16 @@ json make_baseline(const std::string& campaign_name, const std::vector<WindowRec
                    double velocity_tolerance) {
   json rows = json::array();
   for (const WindowRecord& w : windows) rows.push_back(row_of(w));
-  return {{"campaign", campaign_name},
-          {"solver_version", solver_version_string()},
-          {"tolerances", {{"velocity", velocity_tolerance}}},
-          {"windows", rows}};
+  json doc = {{"campaign", campaign_name},
+              {"solver_version", solver_version_string()},
+              {"tolerances", {{"velocity", velocity_tolerance}}},
+              {"windows", rows}};
+  const std::vector<Ladder> ladders = resolution_ladders(windows);
+  if (!ladders.empty()) {
+    doc["ladders"] = json::array();
+    for (const Ladder& l : ladders) doc["ladders"].push_back(ladder_row(l));
+  }
+  return doc;
 }
 
 RegressionReport compare_to_baseline(const json& baseline,
@@ -90,6 +152,12 @@ RegressionReport compare_to_baseline(const json& baseline,
   }
   for (const auto& [key, row] : current) {
     r.checks.push_back({key, "present", "no", "yes (not in the baseline)", false});
+  }
+  if (baseline.contains("ladders")) {
+    if (!baseline["ladders"].is_array()) {
+      throw std::invalid_argument("/ladders: must be an array of resolution ladders");
+    }
+    compare_ladders(baseline["ladders"], windows, tol, r);
   }
   return r;
 }

@@ -5,11 +5,20 @@
 //    "tolerances": {"velocity": 0.01},          // m/s, for window edges
 //    "windows": [{"params": {...}, "critical_velocity": x | null,
 //                 "maximum_velocity": y | null, "intervals": n,
-//                 "sticks": n, "rebounds": n, "unclassified": n}, ...]}
+//                 "sticks": n, "rebounds": n, "unclassified": n}, ...],
+//    "ladders": [{"params": {...}, "pointer": "/particle_impact/...",
+//                 "levels": [8, 16],
+//                 "critical": {"status": "not-converged", "value": x | null,
+//                              "error": e | null},
+//                 "maximum": {...}}, ...]}      // only where the windows form
+//                                                // resolution ladders
 // A parameter set drifts when it is missing, when an edge appears,
 // disappears or moves by more than the velocity tolerance, when the number
 // of sticking intervals changes, or when the number of jobs that are neither
-// stick nor rebound changes (a newly unstable job is a regression).
+// stick nor rebound changes (a newly unstable job is a regression). A
+// resolution ladder (campaign/ladders.hpp) drifts when it is missing, when
+// an edge's status changes, or when its value or its error from resolution
+// appears, disappears or moves by more than the velocity tolerance.
 #pragma once
 
 #include <nlohmann/json.hpp>
