@@ -40,8 +40,8 @@ int run_window(WindowOptions o) {
   if (o.request.accuracy == "fast") {
     std::printf(
         "\nerror bars: the brackets only (16 elements across); --accuracy converged adds "
-        "the error from resolution (16, 32, 48 elements across), reusing these jobs "
-        "with the same splat build.\n");
+        "the error from resolution (8, 16, 32 elements across, coarse to fine, the "
+        "edges extrapolated).\n");
   }
   std::printf(
       "\nstored in %s (job results under %s.jobs/): `splat windows --db %s --format "
@@ -68,7 +68,7 @@ void register_window(CLI::App& app, CommandTable& commands) {
   sub->add_option("--velocity", o->velocity, "Impact speeds FROM:TO[:STEP], m/s")
       ->capture_default_str();
   sub->add_option("--accuracy", o->request.accuracy,
-                  "fast (16 elements across) or converged (16, 32, 48 across, coarse to fine)")
+                  "fast (16 elements across) or converged (8, 16, 32 across, coarse to fine)")
       ->check(CLI::IsMember({"fast", "converged"}))
       ->capture_default_str();
   sub->add_option("--G_c", o->request.G_c, "Adhesion energy, J/m^2")->capture_default_str();

@@ -101,7 +101,7 @@ json window_campaign(const WindowRequest& r) {
                           number(r.velocity.from) + "-" + number(r.velocity.to) +
                           " m/s, axisymmetric FE with splat's bonding model (G_c " + number(r.G_c) +
                           " J/m^2), edges refined to " + number(tolerance) + " m/s" +
-                          (converged ? " at 16, 32 and 48 elements across (coarse to fine)"
+                          (converged ? " at 8, 16 and 32 elements across (coarse to fine)"
                                      : " at 16 elements across") +
                           "."},
       {"tags", {"window"}},
@@ -117,7 +117,7 @@ json window_campaign(const WindowRequest& r) {
   if (converged) {
     doc["fields"] = {{{"pointer", "/particle_impact/particle/elements_across"},
                       {"unit", "-"},
-                      {"values", {16, 32, 48}}}};
+                      {"values", {8, 16, 32}}}};
   }
   return doc;
 }

@@ -20,7 +20,7 @@ struct WindowRequest {
   std::string substrate;          // empty: the particle's material
   double radius = 12.5e-6;        // m
   VelocityRange velocity;         // grid of the coarsest level
-  std::string accuracy = "fast";  // fast: 16 elements across; converged: 16, 32, 48 coarse to fine
+  std::string accuracy = "fast";  // fast: 16 elements across; converged: 8, 16, 32 coarse to fine
   double G_c = 30.0;              // J/m^2
 };
 
@@ -38,7 +38,8 @@ nlohmann::json bonding_model(double G_c);
 // The campaign document of a request: axisymmetric FE impacts, the velocity
 // grid, refinement to 25 m/s (fast) or 10 m/s (converged) with a guard band
 // of twice the tolerance, and for `converged` the elements_across ladder
-// 16, 32, 48 refined coarse to fine. Throws InputError naming the option for
+// 8, 16, 32 refined coarse to fine (a constant ratio, so the edges are
+// extrapolated). Throws InputError naming the option for
 // a radius or accuracy out of range.
 nlohmann::json window_campaign(const WindowRequest& request);
 
