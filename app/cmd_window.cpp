@@ -40,8 +40,9 @@ int run_window(WindowOptions o) {
   if (o.request.accuracy == "fast") {
     std::printf(
         "\nerror bars: the brackets only (16 elements across); --accuracy converged adds "
-        "the error from resolution (8, 16, 32 elements across, coarse to fine, the "
-        "edges extrapolated).\n");
+        "the error from resolution (%s elements across, coarse to fine, the edges "
+        "extrapolated).\n",
+        campaign::converged_ladder_text().c_str());
   }
   std::printf(
       "\nstored in %s (job results under %s.jobs/): `splat windows --db %s --format "
@@ -68,7 +69,8 @@ void register_window(CLI::App& app, CommandTable& commands) {
   sub->add_option("--velocity", o->velocity, "Impact speeds FROM:TO[:STEP], m/s")
       ->capture_default_str();
   sub->add_option("--accuracy", o->request.accuracy,
-                  "fast (16 elements across) or converged (8, 16, 32 across, coarse to fine)")
+                  "fast (16 elements across) or converged (" + campaign::converged_ladder_text() +
+                      " across, coarse to fine)")
       ->check(CLI::IsMember({"fast", "converged"}))
       ->capture_default_str();
   sub->add_option("--G_c", o->request.G_c, "Adhesion energy, J/m^2")->capture_default_str();

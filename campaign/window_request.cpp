@@ -61,6 +61,12 @@ VelocityRange parse_velocity_range(const std::string& text) {
   return r;
 }
 
+std::string converged_ladder_text() {
+  std::string out;
+  for (int n : k_converged_ladder) out += (out.empty() ? "" : ", ") + std::to_string(n);
+  return out;
+}
+
 json bonding_model(double G_c) {
   return {{"G_c", G_c},
           {"sigma_c", "flow-stress"},
@@ -96,14 +102,14 @@ json window_campaign(const WindowRequest& r) {
   json doc = {
       {"name", "window-" + name_part(r.particle) + "-on-" + name_part(substrate) + "-r" +
                    number(r.radius * 1e6) + "um-" + r.accuracy},
-      {"description", "Deposition window of a " + r.particle + " particle of radius " +
-                          number(r.radius) + " m on a " + substrate + " substrate, " +
-                          number(r.velocity.from) + "-" + number(r.velocity.to) +
-                          " m/s, axisymmetric FE with splat's bonding model (G_c " + number(r.G_c) +
-                          " J/m^2), edges refined to " + number(tolerance) + " m/s" +
-                          (converged ? " at 8, 16 and 32 elements across (coarse to fine)"
-                                     : " at 16 elements across") +
-                          "."},
+      {"description",
+       "Deposition window of a " + r.particle + " particle of radius " + number(r.radius) +
+           " m on a " + substrate + " substrate, " + number(r.velocity.from) + "-" +
+           number(r.velocity.to) + " m/s, axisymmetric FE with splat's bonding model (G_c " +
+           number(r.G_c) + " J/m^2), edges refined to " + number(tolerance) + " m/s" +
+           (converged ? " at " + converged_ladder_text() + " elements across (coarse to fine)"
+                      : " at 16 elements across") +
+           "."},
       {"tags", {"window"}},
       {"base_scene", scene},
       {"velocity",
@@ -117,7 +123,7 @@ json window_campaign(const WindowRequest& r) {
   if (converged) {
     doc["fields"] = {{{"pointer", "/particle_impact/particle/elements_across"},
                       {"unit", "-"},
-                      {"values", {8, 16, 32}}}};
+                      {"values", k_converged_ladder}}};
   }
   return doc;
 }

@@ -4,10 +4,18 @@
 // run like any other.
 #pragma once
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <string>
 
 namespace splat::campaign {
+
+// Elements across the particle radius of each level of `--accuracy
+// converged`, coarse to fine: a constant ratio, so each edge is extrapolated.
+inline constexpr std::array<int, 3> k_converged_ladder{8, 16, 32};
+
+// k_converged_ladder as text: "8, 16, 32".
+std::string converged_ladder_text();
 
 struct VelocityRange {
   double from = 100.0;  // m/s
@@ -20,7 +28,7 @@ struct WindowRequest {
   std::string substrate;          // empty: the particle's material
   double radius = 12.5e-6;        // m
   VelocityRange velocity;         // grid of the coarsest level
-  std::string accuracy = "fast";  // fast: 16 elements across; converged: 8, 16, 32 coarse to fine
+  std::string accuracy = "fast";  // fast: 16 elements across; converged: k_converged_ladder
   double G_c = 30.0;              // J/m^2
 };
 
@@ -38,9 +46,8 @@ nlohmann::json bonding_model(double G_c);
 // The campaign document of a request: axisymmetric FE impacts, the velocity
 // grid, refinement to 25 m/s (fast) or 10 m/s (converged) with a guard band
 // of twice the tolerance, and for `converged` the elements_across ladder
-// 8, 16, 32 refined coarse to fine (a constant ratio, so the edges are
-// extrapolated). Throws InputError naming the option for
-// a radius or accuracy out of range.
+// k_converged_ladder refined coarse to fine. Throws InputError naming the
+// option for a radius or accuracy out of range.
 nlohmann::json window_campaign(const WindowRequest& request);
 
 }  // namespace splat::campaign
