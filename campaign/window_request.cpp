@@ -103,8 +103,8 @@ json window_campaign(const WindowRequest& r) {
       {"name", "window-" + name_part(r.particle) + "-on-" + name_part(substrate) + "-r" +
                    number(r.radius * 1e6) + "um-" + r.accuracy},
       {"description",
-       "Deposition window of a " + r.particle + " particle of radius " + number(r.radius) +
-           " m on a " + substrate + " substrate, " + number(r.velocity.from) + "-" +
+       "Deposition window of particle " + r.particle + " (radius " + number(r.radius) +
+           " m) on substrate " + substrate + ", " + number(r.velocity.from) + "-" +
            number(r.velocity.to) + " m/s, axisymmetric FE with splat's bonding model (G_c " +
            number(r.G_c) + " J/m^2), edges refined to " + number(tolerance) + " m/s" +
            (converged ? " at " + converged_ladder_text() + " elements across (coarse to fine)"

@@ -60,6 +60,10 @@ TEST(campaign_window_request, fast_is_one_level_converged_a_coarse_to_fine_ladde
   EXPECT_EQ(fast.base_scene.at("/particle_impact/substrate/material"_json_pointer), "al-thesis");
   // fast runs the middle level of converged.
   EXPECT_EQ(fast.base_scene.at("/particle_impact/particle/elements_across"_json_pointer), 16);
+  EXPECT_EQ(fast.description.rfind("Deposition window of particle cu-thesis (radius ", 0), 0u)
+      << fast.description;
+  EXPECT_NE(fast.description.find(" on substrate al-thesis, 200-600 m/s"), std::string::npos)
+      << fast.description;
 
   r.accuracy = "converged";
   const CampaignSpec fine = read_campaign(window_campaign(r), k_source);
