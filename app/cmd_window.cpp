@@ -34,6 +34,7 @@ struct WindowOptions {
 int run_window(WindowOptions o) {
   o.request.velocity = campaign::parse_velocity_range(o.velocity);
   const nlohmann::json doc = campaign::window_campaign(o.request);
+  o.run.workers = o.request.workers;
   const campaign::CampaignSpec spec = campaign::read_campaign(doc, std::filesystem::current_path());
   std::fprintf(stderr, "%s\n", spec.description.c_str());
   const int code = run_and_print(spec, o.run);
@@ -57,7 +58,7 @@ int run_window(WindowOptions o) {
 void register_window(CLI::App& app, CommandTable& commands) {
   auto o = std::make_shared<WindowOptions>();
   o->run.db = "window.db";
-  o->run.workers = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  o->request.workers = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   CLI::App* sub = app.add_subcommand(
       "window", "Deposition window of a material pair, with its error from resolution");
   sub->add_option("--particle", o->request.particle,
@@ -75,7 +76,10 @@ void register_window(CLI::App& app, CommandTable& commands) {
       ->capture_default_str();
   sub->add_option("--G_c", o->request.G_c, "Adhesion energy, J/m^2")->capture_default_str();
   sub->add_option("--db", o->run.db, "SQLite store")->capture_default_str();
-  sub->add_option("--workers", o->run.workers, "Jobs run at once")->capture_default_str();
+  sub->add_option("--workers", o->request.workers,
+                  "Jobs run at once; each refinement round runs as many new speeds (at most " +
+                      std::to_string(campaign::k_max_points_per_round) + ")")
+      ->capture_default_str();
   commands.emplace_back(sub, [o] { return run_window(*o); });
 }
 

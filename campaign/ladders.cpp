@@ -239,22 +239,23 @@ std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::ve
   return {out.begin(), out.end()};
 }
 
-LadderStep coarse_to_fine_step(const std::vector<std::vector<Sample>>& levels, double tolerance,
-                               double guard_band) {
+LadderStep coarse_to_fine_step(const std::vector<std::vector<Sample>>& levels,
+                               const RefinementRule& rule) {
   for (std::size_t i = 0; i < levels.size(); ++i) {
     if (i > 0) {
       std::vector<double> coarser;
       for (std::size_t j = 0; j < i; ++j) {
         for (const Sample& s : levels[j]) coarser.push_back(s.velocity);
       }
-      std::vector<double> seeds = level_seeds(levels[i - 1], levels[i], guard_band, coarser);
+      std::vector<double> seeds = level_seeds(levels[i - 1], levels[i], rule.guard_band, coarser);
       if (!seeds.empty()) return {i, std::move(seeds)};
     }
     // The guard band is sampled at the finest level only: an island a
     // coarser mesh shows beside its edge would only be followed, at every
     // finer level, by edges that mesh does not have.
-    const double band = i + 1 == levels.size() ? guard_band : 0.0;
-    std::vector<double> points = refinement_points(compute_window(levels[i]), tolerance, band);
+    RefinementRule level_rule = rule;
+    if (i + 1 < levels.size()) level_rule.guard_band = 0.0;
+    std::vector<double> points = refinement_points(compute_window(levels[i]), level_rule);
     if (!points.empty()) return {i, std::move(points)};
   }
   return {};

@@ -100,14 +100,16 @@ std::vector<double> level_seeds(const std::vector<Sample>& coarse, const std::ve
                                 double guard_band, const std::vector<double>& coarser = {});
 
 // What a ladder runs next: the coarsest level whose refinement is not done
-// (refinement_points of its window, or, above the coarsest, level_seeds from
-// the level below), with its velocities. Empty velocities: every level done.
+// (refinement_points of its window under `rule`, the guard band at the
+// finest level only, or, above the coarsest, level_seeds from the level
+// below with the rule's guard band), with its velocities. Empty velocities:
+// every level done.
 struct LadderStep {
   std::size_t level = 0;  // index into the levels, coarse to fine
   std::vector<double> velocities;
 };
-LadderStep coarse_to_fine_step(const std::vector<std::vector<Sample>>& levels, double tolerance,
-                               double guard_band);
+LadderStep coarse_to_fine_step(const std::vector<std::vector<Sample>>& levels,
+                               const RefinementRule& rule);
 
 nlohmann::json to_json(const Ladder& l);
 

@@ -278,8 +278,7 @@ PlannedPoints ladder_points(const CampaignSpec& spec,
     });
     std::vector<std::vector<Sample>> levels;
     for (const json& p : sets) levels.push_back(samples[canonical_text(p)]);
-    const LadderStep step =
-        coarse_to_fine_step(levels, spec.refinement->tolerance, spec.refinement->guard_band);
+    const LadderStep step = coarse_to_fine_step(levels, spec.refinement->rule());
     for (double v : step.velocities) out.push_back({sets[step.level], v});
   }
   return out;
@@ -293,8 +292,7 @@ PlannedPoints next_points(const CampaignSpec& spec, const std::vector<WindowReco
   PlannedPoints out;
   for (const WindowRecord& w : windows) {
     const Window win = compute_window(samples[w.params_key]);
-    for (double v :
-         refinement_points(win, spec.refinement->tolerance, spec.refinement->guard_band)) {
+    for (double v : refinement_points(win, spec.refinement->rule())) {
       out.push_back({json::parse(w.params), v});
     }
   }

@@ -227,9 +227,9 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
 
   if (doc.contains("refinement")) {
     const json& r = doc.at("refinement");
-    s.refinement =
-        RefinementOptions{r.at("tolerance").get<double>(), r.value("max_extra_jobs", 100),
-                          r.value("guard_band", 0.0), r.value("coarse_to_fine", false)};
+    s.refinement = RefinementOptions{
+        r.at("tolerance").get<double>(), r.value("max_extra_jobs", 100), r.value("guard_band", 0.0),
+        r.value("coarse_to_fine", false), r.value("points_per_round", 1)};
     if (s.refinement->coarse_to_fine && !ladder_axis(s)) {
       problems.push_back({"/refinement/coarse_to_fine", "needs a `fields` axis on " +
                                                             k_resolution_pointers.front() +

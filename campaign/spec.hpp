@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "campaign/windows.hpp"
 #include "solver/common/enum_names.hpp"
 
 namespace splat::campaign {
@@ -36,6 +37,8 @@ struct RefinementOptions {
   int max_extra_jobs = 100;
   double guard_band = 0.0;      // m/s; band around each edge sampled to the tolerance (islands)
   bool coarse_to_fine = false;  // finer resolution levels run near the coarser level's edges only
+  int points_per_round = 1;     // new velocities per window and round (1 = bisection)
+  RefinementRule rule() const { return {tolerance, guard_band, points_per_round}; }
 };
 
 struct JobOptions {

@@ -1,5 +1,6 @@
 #include "campaign/window_request.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -85,6 +86,7 @@ json window_campaign(const WindowRequest& r) {
     refuse("--accuracy", "must be fast or converged");
   }
   if (!(r.G_c >= 0.0)) refuse("--G_c", "must be >= 0 (J/m^2)");
+  if (r.workers < 1) refuse("--workers", "must be >= 1 (jobs run at once)");
   const bool converged = r.accuracy == "converged";
   const std::string substrate = r.substrate.empty() ? r.particle : r.substrate;
   const double tolerance = converged ? 10.0 : 25.0;
@@ -118,6 +120,7 @@ json window_campaign(const WindowRequest& r) {
        {{"tolerance", tolerance},
         {"guard_band", 2.0 * tolerance},
         {"max_extra_jobs", converged ? 300 : 100},
+        {"points_per_round", std::min(r.workers, k_max_points_per_round)},
         {"coarse_to_fine", converged}}},
       {"job", {{"time_limit", 1800}, {"retries", 1}, {"threads", 1}}}};
   if (converged) {

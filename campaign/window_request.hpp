@@ -30,7 +30,12 @@ struct WindowRequest {
   VelocityRange velocity;         // grid of the coarsest level
   std::string accuracy = "fast";  // fast: 16 elements across; converged: k_converged_ladder
   double G_c = 30.0;              // J/m^2
+  int workers = 1;                // jobs run at once; also the refinement's points per round
 };
+
+// Most new velocities a refinement round runs per window (the schema's
+// maximum of refinement.points_per_round).
+inline constexpr int k_max_points_per_round = 64;
 
 // "FROM:TO" or "FROM:TO:STEP" in m/s (default step 100). Throws InputError
 // naming --velocity.
@@ -45,9 +50,10 @@ nlohmann::json bonding_model(double G_c);
 
 // The campaign document of a request: axisymmetric FE impacts, the velocity
 // grid, refinement to 25 m/s (fast) or 10 m/s (converged) with a guard band
-// of twice the tolerance, and for `converged` the elements_across ladder
+// of twice the tolerance and as many points per round as workers (at most
+// k_max_points_per_round), and for `converged` the elements_across ladder
 // k_converged_ladder refined coarse to fine. Throws InputError naming the
-// option for a radius or accuracy out of range.
+// option for a radius, accuracy, G_c or worker count out of range.
 nlohmann::json window_campaign(const WindowRequest& request);
 
 }  // namespace splat::campaign

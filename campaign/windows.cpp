@@ -96,48 +96,97 @@ Window compute_window(std::vector<Sample> samples) {
 
 namespace {
 
+// A gap between neighbouring samples of an open bracket (m/s) and the points
+// this round puts into it, at most `cap`.
+struct Gap {
+  double lo = 0.0;
+  double hi = 0.0;
+  int points = 0;
+  int cap = 1;
+  double part() const { return (hi - lo) / (points + 1); }
+};
+
+// The gaps wider than `tolerance` of every closed edge's bracket wider than
+// it, ascending; each bracket's widest gap (the first of equals) holds its
+// bisection point.
+std::vector<Gap> bracket_gaps(const Window& w, double tolerance) {
+  std::vector<Gap> out;
+  auto add = [&](const Edge& e) {
+    if (!e.closed() || *e.width() <= tolerance) return;
+    std::vector<double> v{*e.rebound_velocity, e.stick_velocity};
+    for (const Sample& s : e.unclassified) v.push_back(s.velocity);
+    std::sort(v.begin(), v.end());
+    std::optional<std::size_t> widest;
+    for (std::size_t i = 0; i + 1 < v.size(); ++i) {
+      const double width = v[i + 1] - v[i];
+      if (!(width > tolerance)) continue;
+      const int cap = std::max(1, static_cast<int>(std::ceil(width / tolerance)) - 1);
+      out.push_back({v[i], v[i + 1], 0, cap});
+      if (!widest || width > out[*widest].hi - out[*widest].lo) widest = out.size() - 1;
+    }
+    if (widest) out[*widest].points = 1;
+  };
+  for (const StickInterval& iv : w.intervals) {
+    add(iv.lower);
+    add(iv.upper);
+  }
+  return out;
+}
+
+// Gives points, up to `total` in all, one at a time to the gap whose parts
+// are widest (the first of equals) among those below their cap.
+void spread(std::vector<Gap>& gaps, int total) {
+  int given = 0;
+  for (const Gap& g : gaps) given += g.points;
+  for (; given < total; ++given) {
+    Gap* best = nullptr;
+    for (Gap& g : gaps) {
+      if (g.points < g.cap && (best == nullptr || g.part() > best->part())) best = &g;
+    }
+    if (best == nullptr) return;
+    ++best->points;
+  }
+}
+
+// The points that split a gap into points + 1 equal parts (one point: the
+// midpoint, exactly 0.5 (lo + hi)).
+void split_points(const Gap& g, std::vector<double>& out) {
+  const int n = g.points + 1;
+  for (int j = 1; j < n; ++j) out.push_back(((n - j) * g.lo + j * g.hi) / n);
+}
+
+bool is_split(const std::vector<Gap>& gaps, double lo, double hi) {
+  return std::any_of(gaps.begin(), gaps.end(),
+                     [&](const Gap& g) { return g.points > 0 && g.lo == lo && g.hi == hi; });
+}
+
 // Midpoints of the parts inside (lo - band, hi + band) of the gaps between
 // consecutive sampled velocities, where such a part is wider than
-// `tolerance`.
+// `tolerance` and is not a gap `split` already puts points into.
 void guard_band_points(const Window& w, double lo, double hi, double band, double tolerance,
-                       std::vector<double>& out) {
+                       const std::vector<Gap>& split, std::vector<double>& out) {
   const std::vector<double>& v = w.sampled;
   for (std::size_t i = 0; i + 1 < v.size(); ++i) {
     // The part of the gap inside the band: a long gap that only reaches into
     // the band is split there, not at its far-away midpoint.
     const double a = std::max(v[i], lo - band), b = std::min(v[i + 1], hi + band);
-    if (b - a > tolerance) out.push_back(0.5 * (a + b));
+    if (b - a > tolerance && !is_split(split, a, b)) out.push_back(0.5 * (a + b));
   }
 }
 
 }  // namespace
 
-std::vector<double> refinement_points(const Window& window, double tolerance, double guard_band) {
+std::vector<double> refinement_points(const Window& window, const RefinementRule& rule) {
+  std::vector<Gap> gaps = bracket_gaps(window, rule.tolerance);
+  spread(gaps, rule.points_per_round);
   std::vector<double> out;
-  auto refine = [&](const Edge& e) {
-    if (!e.closed() || *e.width() <= tolerance) return;
-    std::vector<double> v{*e.rebound_velocity, e.stick_velocity};
-    for (const Sample& s : e.unclassified) v.push_back(s.velocity);
-    std::sort(v.begin(), v.end());
-    double best_gap = 0.0;
-    double best_mid = 0.0;
-    for (std::size_t i = 0; i + 1 < v.size(); ++i) {
-      const double gap = v[i + 1] - v[i];
-      if (gap > best_gap) {
-        best_gap = gap;
-        best_mid = 0.5 * (v[i] + v[i + 1]);
-      }
-    }
-    if (best_gap > tolerance) out.push_back(best_mid);
-  };
+  for (const Gap& g : gaps) split_points(g, out);
   for (const StickInterval& iv : window.intervals) {
-    refine(iv.lower);
-    refine(iv.upper);
     for (const Edge* e : {&iv.lower, &iv.upper}) {
-      if (!(guard_band > 0.0) || !e->closed()) continue;
+      if (!(rule.guard_band > 0.0) || !e->closed()) continue;
       const double a = std::min(*e->rebound_velocity, e->stick_velocity);
       const double b = std::max(*e->rebound_velocity, e->stick_velocity);
-      guard_band_points(window, a, b, guard_band, tolerance, out);
+      guard_band_points(window, a, b, rule.guard_band, rule.tolerance, gaps, out);
     }
   }
   std::sort(out.begin(), out.end());

@@ -64,18 +64,32 @@ struct Window {
 // The window of one parameter set. `samples` need not be sorted.
 Window compute_window(std::vector<Sample> samples);
 
-// Velocities to run next to sharpen the window's closed edges: for each edge
-// whose bracket is wider than `tolerance` (m/s), the midpoint of the largest
-// gap between the bracket's ends and the unclassified samples inside it
-// (so an unstable job at a midpoint does not stall the bisection). With a
-// `guard_band` (m/s), also the midpoint of every gap wider than `tolerance`
+// How refinement samples a window: the bracket width at which an edge counts
+// as found, the band about each edge sampled to that width too, and how many
+// new velocities a round may spread over the brackets of one window.
+struct RefinementRule {
+  double tolerance = 0.0;    // m/s
+  double guard_band = 0.0;   // m/s; 0 = the brackets only
+  int points_per_round = 1;  // 1 = bisection
+};
+
+// Velocities to run next to sharpen the window's closed edges. For each edge
+// whose bracket is wider than `tolerance`, the midpoint of the largest gap
+// between the bracket's ends and the unclassified samples inside it (so an
+// unstable job at a midpoint does not stall the bisection). With
+// `points_per_round` k > 1 the round has up to k such points in all (at
+// least the one per bracket): each further point goes to the gap of an open
+// bracket whose parts are widest, a gap given m points is split into m + 1
+// equal parts, and no gap gets more than ceil(gap / tolerance) - 1 (parts
+// no narrower than needed); ties go to the lower velocity. With a
+// `guard_band`, also the midpoint of every gap wider than `tolerance`
 // between samples within guard_band of a closed edge's bracket: stick and
 // rebound alternate near an edge (an island narrower than the grid hides
 // between two samples of the same verdict), so the band around each edge is
 // sampled to the tolerance too, and an island found there becomes an
-// interval of its own. Empty when nothing is left to sample.
-std::vector<double> refinement_points(const Window& window, double tolerance,
-                                      double guard_band = 0.0);
+// interval of its own; a bracket gap that is split has its split points
+// instead of that midpoint. Ascending; empty when nothing is left to sample.
+std::vector<double> refinement_points(const Window& window, const RefinementRule& rule);
 
 nlohmann::json to_json(const Sample& s);
 nlohmann::json to_json(const Edge& e);

@@ -11,7 +11,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +22,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
+#include <utility>
 
 #include "campaign/manager.hpp"
 #include "campaign/sqlite.hpp"
@@ -304,6 +308,36 @@ TEST(campaign_executor, a_stop_during_refinement_resumes_the_refinement_jobs) {
   for (const PointStatus& p : store.points(resumed.campaign_id)) {
     EXPECT_EQ(p.state, JobState::succeeded) << p.point.velocity << " " << p.point.origin;
   }
+}
+
+// Refinement of a closed-form edge (fake jobs stick below V0 = 2.537) from
+// a bracket [2, 3] to 0.01: two points per round, on two workers, need fewer
+// rounds than bisection (5 against 7) for a few more jobs, and find the
+// same edge.
+TEST(campaign_executor, two_points_per_round_find_the_edge_in_fewer_rounds) {
+  TempDir t;
+  const double threshold = 2.537, tol = 0.01;
+  std::map<int, std::pair<int, int>> rounds_jobs;
+  for (int k : {1, 2}) {
+    Store store(t.path / ("k" + std::to_string(k) + ".db"));
+    CampaignSpec spec = fake_campaign("split-" + std::to_string(k),
+                                      {json::object({{"threshold", threshold}})}, {1, 2, 3, 4});
+    spec.refinement = RefinementOptions{tol, 100, 0.0, false, k};
+    std::atomic<int> rounds{0};
+    ManagerOptions o = fake_options(2);
+    o.on_progress = [&](const Progress& p) { rounds = std::max(rounds.load(), p.round); };
+    const SweepReport r = run_sweep(store, spec, o);
+    ASSERT_EQ(r.state, CampaignState::finished);
+    ASSERT_EQ(r.windows.size(), 1u);
+    const json w = json::parse(r.windows[0].window);
+    EXPECT_LE(w.at("maximum_bracket").at("width").get<double>(), tol + 1e-12) << k;
+    EXPECT_NEAR(w.at("maximum_velocity").get<double>(), threshold, tol / 2) << k;
+    rounds_jobs[k] = {rounds.load(), r.counts.total()};
+    std::printf("  %d point(s) per round: %d rounds, %d jobs\n", k, rounds.load(),
+                r.counts.total());
+  }
+  EXPECT_EQ(rounds_jobs[1], (std::pair{7, 11}));
+  EXPECT_EQ(rounds_jobs[2], (std::pair{5, 13}));
 }
 
 // A store that refuses a write in the middle of a run (a full disk; here a

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "campaign/ladders.hpp"
@@ -149,20 +151,32 @@ struct TrueWindow {
   }
 };
 
+// The samples of each level and the rounds coarse_to_fine_step took.
+struct LadderRun {
+  std::vector<std::vector<Sample>> levels;
+  int rounds = 0;
+};
+
 // Runs coarse_to_fine_step to the end: the coarsest level starts on the
-// grid, the finer ones empty. Returns each level's samples.
+// grid, the finer ones empty.
+LadderRun run_ladder_rounds(const std::vector<TrueWindow>& truth, const std::vector<double>& grid,
+                            const RefinementRule& rule) {
+  LadderRun run{std::vector<std::vector<Sample>>(truth.size()), 0};
+  for (double v : grid) run.levels[0].push_back(truth[0].at(v));
+  for (; run.rounds < 200; ++run.rounds) {
+    const LadderStep step = coarse_to_fine_step(run.levels, rule);
+    if (step.velocities.empty()) return run;
+    for (double v : step.velocities) run.levels[step.level].push_back(truth[step.level].at(v));
+  }
+  ADD_FAILURE() << "no end after 200 rounds";
+  return run;
+}
+
+// Each level's samples of run_ladder_rounds with bisection.
 std::vector<std::vector<Sample>> run_ladder(const std::vector<TrueWindow>& truth,
                                             const std::vector<double>& grid, double tolerance,
                                             double band) {
-  std::vector<std::vector<Sample>> levels(truth.size());
-  for (double v : grid) levels[0].push_back(truth[0].at(v));
-  for (int round = 0; round < 200; ++round) {
-    const LadderStep step = coarse_to_fine_step(levels, tolerance, band);
-    if (step.velocities.empty()) return levels;
-    for (double v : step.velocities) levels[step.level].push_back(truth[step.level].at(v));
-  }
-  ADD_FAILURE() << "no end after 200 rounds";
-  return levels;
+  return run_ladder_rounds(truth, grid, {tolerance, band}).levels;
 }
 
 // A level whose particle sticks in [lower, upper) m/s and in an island
@@ -214,7 +228,7 @@ TEST(campaign_ladders, coarse_to_fine_finds_a_stick_island_below_the_coarse_edge
   for (double v : grid) levels[0].push_back(coarse.at(v));
   int round = 0;
   for (; round < 200; ++round) {
-    const LadderStep step = coarse_to_fine_step(levels, 10.0, 20.0);
+    const LadderStep step = coarse_to_fine_step(levels, {10.0, 20.0});
     if (step.velocities.empty()) break;
     for (double v : step.velocities) {
       levels[step.level].push_back(step.level == 0 ? coarse.at(v) : fine.at(v));
@@ -252,6 +266,29 @@ TEST(campaign_ladders, coarse_to_fine_brackets_every_level_with_fewer_jobs) {
   EXPECT_LT(levels[1].size() + levels[2].size(), 2 * levels[0].size());
 }
 
+// The ladder above with four points per round: every level bracketed to the
+// tolerance as with bisection, the finest with its guard band, in fewer
+// rounds.
+TEST(campaign_ladders, four_points_per_round_bracket_the_ladder_in_fewer_rounds) {
+  const std::vector<TrueWindow> truth = {{300, 820}, {340, 790}, {352, 784}};
+  std::map<int, LadderRun> runs;
+  for (int k : {1, 4}) {
+    runs[k] = run_ladder_rounds(truth, grid_200_to_1000(), {10.0, 20.0, k});
+    std::size_t jobs = 0;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+      const Window w = compute_window(runs[k].levels[i]);
+      ASSERT_EQ(w.intervals.size(), 1u) << k << " points, level " << i;
+      EXPECT_NEAR(*w.critical_velocity, truth[i].lower, 10.0) << k << " points, level " << i;
+      EXPECT_NEAR(*w.maximum_velocity, truth[i].upper, 10.0) << k << " points, level " << i;
+      EXPECT_LE(*w.intervals[0].lower.width(), 10.0);
+      EXPECT_LE(*w.intervals[0].upper.width(), 10.0);
+      jobs += runs[k].levels[i].size();
+    }
+    std::printf("  %d point(s) per round: %d rounds, %zu jobs\n", k, runs[k].rounds, jobs);
+  }
+  EXPECT_LT(runs[4].rounds, runs[1].rounds);
+}
+
 // A fine level whose edge moved by more than a grid step (300 -> 480 m/s):
 // the search walks out along the coarse velocities until it finds it.
 TEST(campaign_ladders, coarse_to_fine_follows_an_edge_that_moved_far) {
@@ -286,7 +323,7 @@ TEST(campaign_ladders, the_guard_band_is_sampled_at_the_finest_level_only) {
   for (double v : grid_200_to_1000()) levels[0].push_back(truth.at(v));
   int round = 0;
   for (; round < 200; ++round) {
-    const LadderStep step = coarse_to_fine_step(levels, 10.0, 20.0);
+    const LadderStep step = coarse_to_fine_step(levels, {10.0, 20.0});
     if (step.velocities.empty()) break;
     for (double v : step.velocities) levels[step.level].push_back(truth.at(v));
   }

@@ -209,6 +209,28 @@ TEST(campaign_spec, bad_specs_name_the_field_and_rule) {
   EXPECT_TRUE(has(messages(d), "/base_scene: "));
 }
 
+// refinement.points_per_round: 1 (bisection) unless given, read into the
+// rule; out of 1-64 refused, naming the field and the rule.
+TEST(campaign_spec, points_per_round_is_read_into_the_rule_or_refused) {
+  json d = two_mass_campaign();
+  d["refinement"] = {{"tolerance", 0.01}, {"guard_band", 0.02}};
+  EXPECT_EQ(read_campaign(d).refinement->points_per_round, 1);
+  d["refinement"]["points_per_round"] = 4;
+  const RefinementRule rule = read_campaign(d).refinement->rule();
+  EXPECT_EQ(rule.tolerance, 0.01);
+  EXPECT_EQ(rule.guard_band, 0.02);
+  EXPECT_EQ(rule.points_per_round, 4);
+  d["refinement"]["points_per_round"] = 64;
+  EXPECT_TRUE(messages(d).empty());
+  d["refinement"]["points_per_round"] = 0;
+  EXPECT_TRUE(has(messages(d), "/refinement/points_per_round: must be >= 1 (-)")) << messages(d)[0];
+  d["refinement"]["points_per_round"] = 65;
+  EXPECT_TRUE(has(messages(d), "/refinement/points_per_round: must be <= 64 (-)"))
+      << messages(d)[0];
+  d["refinement"]["points_per_round"] = 2.5;
+  EXPECT_TRUE(has(messages(d), "/refinement/points_per_round: must be")) << messages(d)[0];
+}
+
 TEST(campaign_spec, base_scene_by_path_and_real_resolution) {
   // A real splat scene resolved by splat: defaults written out, so a job that
   // sets a field to its default is the same job as one that leaves it out.

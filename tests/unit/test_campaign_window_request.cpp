@@ -5,7 +5,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "campaign/spec.hpp"
 #include "campaign/window_request.hpp"
@@ -84,4 +86,23 @@ TEST(campaign_window_request, options_out_of_range_name_the_option) {
   r.accuracy = "fast";
   r.G_c = -1.0;
   EXPECT_EQ(refusal([&] { window_campaign(r); }), "--G_c: must be >= 0 (J/m^2)");
+  r.G_c = 30.0;
+  r.workers = 0;
+  EXPECT_EQ(refusal([&] { window_campaign(r); }), "--workers: must be >= 1 (jobs run at once)");
+}
+
+// Each refinement round runs as many new speeds as there are workers, at
+// most the 64 the campaign schema allows.
+TEST(campaign_window_request, points_per_round_are_the_workers) {
+  WindowRequest r;
+  r.particle = "al-thesis";
+  for (const auto& [workers, points] :
+       {std::pair{1, 1}, std::pair{2, 2}, std::pair{64, 64}, std::pair{1000, 64}}) {
+    r.workers = workers;
+    for (const char* accuracy : {"fast", "converged"}) {
+      r.accuracy = accuracy;
+      const CampaignSpec s = read_campaign(window_campaign(r), k_source);
+      EXPECT_EQ(s.refinement->points_per_round, points) << workers << " workers, " << accuracy;
+    }
+  }
 }

@@ -3,6 +3,7 @@
 // shown and never counted, and the bisection points of refinement.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -141,18 +142,127 @@ TEST(campaign_windows, unsorted_input_is_sorted) {
 
 TEST(campaign_windows, refinement_bisects_each_wide_closed_edge) {
   const Window w = compute_window(pattern("rrsssr"));
-  EXPECT_EQ(refinement_points(w, 10.0), (std::vector<double>{250.0, 550.0}));
-  EXPECT_TRUE(refinement_points(w, 100.0).empty());  // width 100 is within tolerance
+  EXPECT_EQ(refinement_points(w, {10.0}), (std::vector<double>{250.0, 550.0}));
+  EXPECT_TRUE(refinement_points(w, {100.0}).empty());  // width 100 is within tolerance
   // Open edges cannot be refined.
-  EXPECT_EQ(refinement_points(compute_window(pattern("ssr")), 1.0), std::vector<double>{250.0});
+  EXPECT_EQ(refinement_points(compute_window(pattern("ssr")), {1.0}), std::vector<double>{250.0});
 }
 
 TEST(campaign_windows, refinement_steps_around_an_unstable_midpoint) {
   // Bracket [100, 300] with an unstable sample at 200: bisect a half, not 200 again.
   const Window w = compute_window(pattern("rus"));
-  const std::vector<double> p = refinement_points(w, 10.0);
+  const std::vector<double> p = refinement_points(w, {10.0});
   ASSERT_EQ(p.size(), 1u);
   EXPECT_TRUE(p[0] == 150.0 || p[0] == 250.0) << p[0];
+}
+
+// Samples at the given velocities with the given verdicts (s, r, u as in
+// pattern()).
+std::vector<Sample> at(const std::vector<double>& v, const std::string& p) {
+  std::vector<Sample> out = pattern(p);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i].velocity = v[i];
+  return out;
+}
+
+// The bisection of refinement as one obvious loop per edge and per band: the
+// widest gap's midpoint of each bracket wider than the tolerance, and the
+// midpoint of each gap's part within the band of a closed edge wider than
+// the tolerance.
+std::vector<double> bisection(const Window& w, double tol, double band) {
+  std::vector<double> out;
+  for (const StickInterval& iv : w.intervals) {
+    for (const Edge* e : {&iv.lower, &iv.upper}) {
+      if (!e->closed()) continue;
+      const double lo = std::min(*e->rebound_velocity, e->stick_velocity);
+      const double hi = std::max(*e->rebound_velocity, e->stick_velocity);
+      std::vector<double> v{lo, hi};
+      for (const Sample& s : e->unclassified) v.push_back(s.velocity);
+      std::sort(v.begin(), v.end());
+      double gap = 0.0, mid = 0.0;
+      for (std::size_t i = 0; i + 1 < v.size(); ++i) {
+        if (v[i + 1] - v[i] > gap) gap = v[i + 1] - v[i], mid = 0.5 * (v[i] + v[i + 1]);
+      }
+      if (hi - lo > tol && gap > tol) out.push_back(mid);
+      for (std::size_t i = 0; band > 0.0 && i + 1 < w.sampled.size(); ++i) {
+        const double a = std::max(w.sampled[i], lo - band);
+        const double b = std::min(w.sampled[i + 1], hi + band);
+        if (b - a > tol) out.push_back(0.5 * (a + b));
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// One bracket [100, 200] m/s: two points per round split it in thirds, one
+// point bisects it.
+TEST(campaign_windows, two_points_per_round_split_one_bracket_in_thirds) {
+  const Window w = compute_window(pattern("rsss"));
+  const std::vector<double> p = refinement_points(w, {10.0, 0.0, 2});
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_DOUBLE_EQ(p[0], 100.0 + 100.0 / 3.0);
+  EXPECT_DOUBLE_EQ(p[1], 100.0 + 200.0 / 3.0);
+  EXPECT_EQ(refinement_points(w, {10.0, 0.0, 1}), std::vector<double>{150.0});
+}
+
+// Brackets of 100 m/s (lower edge, [100, 200]) and 300 m/s (upper edge,
+// [500, 800]): each gets its bisection point, the third point of a round
+// goes to the wider one (split in thirds), a fourth to it again (quarters:
+// its parts of 100 m/s are still wider than the narrow one's 50).
+TEST(campaign_windows, points_spread_over_the_brackets_widest_first) {
+  const Window w = compute_window(at({100, 200, 500, 800}, "rssr"));
+  EXPECT_EQ(refinement_points(w, {10.0, 0.0, 2}), (std::vector<double>{150.0, 650.0}));
+  EXPECT_EQ(refinement_points(w, {10.0, 0.0, 3}), (std::vector<double>{150.0, 600.0, 700.0}));
+  EXPECT_EQ(refinement_points(w, {10.0, 0.0, 4}),
+            (std::vector<double>{150.0, 575.0, 650.0, 725.0}));
+}
+
+// A gap of 30 m/s at a tolerance of 10 takes two points (parts of 10 m/s),
+// one of 20 m/s one point, however many a round may have.
+TEST(campaign_windows, points_stop_at_the_tolerance) {
+  const Window one = compute_window(at({100, 130}, "rs"));
+  EXPECT_EQ(refinement_points(one, {10.0, 0.0, 8}), (std::vector<double>{110.0, 120.0}));
+  EXPECT_TRUE(refinement_points(compute_window(at({100, 110}, "rs")), {10.0, 0.0, 8}).empty());
+  const Window two = compute_window(at({100, 130, 500, 520}, "rssr"));
+  EXPECT_EQ(refinement_points(two, {10.0, 0.0, 8}), (std::vector<double>{110.0, 120.0, 510.0}));
+}
+
+// A bracket split in thirds has those points instead of its guard-band
+// midpoint; the band beyond the bracket is sampled as with bisection.
+TEST(campaign_windows, split_points_replace_the_guard_band_midpoint) {
+  const Window w = compute_window(pattern("rss"));
+  EXPECT_EQ(refinement_points(w, {5.0, 20.0, 1}), (std::vector<double>{150.0, 210.0}));
+  const std::vector<double> p = refinement_points(w, {5.0, 20.0, 2});
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_DOUBLE_EQ(p[0], 100.0 + 100.0 / 3.0);
+  EXPECT_DOUBLE_EQ(p[1], 100.0 + 200.0 / 3.0);
+  EXPECT_EQ(p[2], 210.0);
+}
+
+// One point per round is bisection: round by round, with unclassified
+// samples and a guard band, the same velocities, bit for bit, as the
+// obvious loop above, until nothing is left to sample.
+TEST(campaign_windows, one_point_per_round_is_plain_bisection) {
+  auto truth = [](double v) {
+    const bool stick = (v >= 300.0 && !(v >= 320.0 && v < 335.0)) || (v >= 262.0 && v < 274.0);
+    const bool unstable = std::fmod(v, 150.0) == 0.0;
+    return Sample{v, unstable ? Verdict::other : stick ? Verdict::stick : Verdict::rebound, ""};
+  };
+  for (const double band : {0.0, 50.0}) {
+    std::vector<Sample> samples;
+    for (double v = 100.0; v <= 1000.0; v += 50.0) samples.push_back(truth(v));
+    int round = 0;
+    for (; round < 50; ++round) {
+      const Window w = compute_window(samples);
+      const std::vector<double> next = refinement_points(w, {3.0, band, 1});
+      ASSERT_EQ(next, bisection(w, 3.0, band)) << "band " << band << " round " << round;
+      if (next.empty()) break;
+      for (double v : next) samples.push_back(truth(v));
+    }
+    EXPECT_GT(round, 3) << band;
+    EXPECT_LT(round, 50) << band;
+  }
 }
 
 // Refinement driven to the end against a known threshold: the edge found is
@@ -170,7 +280,7 @@ TEST(campaign_windows, refinement_converges_to_a_known_edge) {
   const double tol = 1.0;
   int extra = 0;
   for (;;) {
-    const std::vector<double> next = refinement_points(compute_window(samples), tol);
+    const std::vector<double> next = refinement_points(compute_window(samples), {tol});
     if (next.empty()) break;
     for (double v : next) samples.push_back(truth(v));
     extra += static_cast<int>(next.size());
@@ -201,7 +311,7 @@ TEST(campaign_windows, guard_band_finds_islands_next_to_an_edge) {
     std::vector<Sample> samples;
     for (double v = 100.0; v <= 1000.0; v += 100.0) samples.push_back(truth(v));
     for (int round = 0; round < 50; ++round) {
-      const std::vector<double> next = refinement_points(compute_window(samples), 5.0, band);
+      const std::vector<double> next = refinement_points(compute_window(samples), {5.0, band});
       if (next.empty()) break;
       for (double v : next) samples.push_back(truth(v));
     }
