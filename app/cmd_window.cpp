@@ -4,7 +4,7 @@
 // One command from a material pair to a deposition window: builds the
 // campaign (axisymmetric FE impact with splat's bonding model, the
 // velocity grid, refinement of the edges and, for `converged`, a resolution
-// ladder of 16, 32 and 48 elements across refined coarse to fine), runs it
+// ladder of campaign::k_converged_ladder refined coarse to fine), runs it
 // like `splat sweep` (resumable: the same command continues it) and prints
 // the window with its error from resolution and where everything is stored.
 #include <algorithm>
