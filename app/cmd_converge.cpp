@@ -34,6 +34,7 @@ struct ConvergeOptions {
   std::vector<std::string> overrides;
   bool json = false;
   int threads = 1;
+  ThreadPolicy thread_policy = ThreadPolicy::adaptive;
 };
 
 struct Level {
@@ -52,6 +53,7 @@ Level run_level(const ConvergeOptions& o, const std::string& pointer, const std:
   const LoadedScene loaded = load_scene(o.scene, sets);
   SimulationOptions so;
   so.threads = o.threads;
+  so.thread_policy = o.thread_policy;
   RunSummary s;
   if (loaded.scene.two_mass) {
     s = run_two_mass(loaded.scene, loaded.resolved, so);
@@ -220,6 +222,7 @@ void register_converge(CLI::App& app, CommandTable& commands) {
   sub->add_option("--set", o->overrides, "Override another field: /json/pointer=VALUE");
   sub->add_flag("--json", o->json, "Print the table as JSON");
   sub->add_option("--threads", o->threads, "OpenMP threads per run")->capture_default_str();
+  add_thread_policy_option(*sub, o->thread_policy);
   commands.emplace_back(sub, [o] { return run_converge(*o); });
 }
 

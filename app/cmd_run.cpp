@@ -31,7 +31,16 @@ struct RunOptions {
   bool json = false;
   bool progress = false;
   int threads = 0;
+  ThreadPolicy thread_policy = ThreadPolicy::adaptive;
 };
+
+// "2 threads (adaptive: 812 steps on 2, 40 on 1)", "1 thread".
+std::string thread_use_text(const ThreadUse& u) {
+  std::string text = std::to_string(u.team) + (u.team == 1 ? " thread" : " threads");
+  if (u.policy == ThreadPolicy::fixed) return text;
+  return text + " (adaptive: " + std::to_string(u.steps_on_team) + " steps on " +
+         std::to_string(u.team) + ", " + std::to_string(u.steps_on_one) + " on 1)";
+}
 
 void print_two_mass(const RunSummary& s) {
   const TwoMassSummary& t = *s.two_mass;
@@ -55,8 +64,8 @@ void print_human(const RunSummary& s) {
     print_two_mass(s);
     return;
   }
-  std::printf("  steps %lld, end time %.4e s, wall %.2f s, %d thread(s)\n", s.steps, s.end_time,
-              s.wall_seconds, s.threads);
+  std::printf("  steps %lld, end time %.4e s, wall %.2f s, %s\n", s.steps, s.end_time,
+              s.wall_seconds, thread_use_text(s.threads).c_str());
   const EnergyBudget& e = s.energy;
   std::printf("  energy J: initial %.4e kinetic %.4e internal %.4e (plastic %.4e)\n",
               e.initial_total, e.kinetic, e.internal, e.plastic_work);
@@ -100,6 +109,7 @@ int run_scene(const RunOptions& o) {
   SimulationOptions so;
   so.output_dir = o.out;
   so.threads = o.threads;
+  so.thread_policy = o.thread_policy;
   so.quiet = !o.progress;
   RunSummary summary;
   if (loaded.scene.two_mass) {
@@ -141,6 +151,18 @@ void check_threads_option(int threads) {
   }
 }
 
+void add_thread_policy_option(CLI::App& sub, ThreadPolicy& policy) {
+  std::vector<std::string> names;
+  for (const auto& entry : k_thread_policy_names) names.emplace_back(entry.second);
+  sub.add_option_function<std::string>(
+         "--thread-policy",
+         [&policy](const std::string& name) { policy = *parse<ThreadPolicy>(name); },
+         "adaptive: each step on the whole team or on one thread, whichever the run "
+         "measures faster (a loaded machine); fixed: always the whole team")
+      ->check(CLI::IsMember(names))
+      ->default_str(std::string(to_string(policy)));
+}
+
 void register_run(CLI::App& app, CommandTable& commands) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* sub = app.add_subcommand("run", "Run one scene and print its result summary");
@@ -154,6 +176,7 @@ void register_run(CLI::App& app, CommandTable& commands) {
   sub->add_flag("--progress", o->progress, "Print progress lines on stderr");
   sub->add_option("--threads", o->threads, "OpenMP threads (0: default; at most the cores)")
       ->capture_default_str();
+  add_thread_policy_option(*sub, o->thread_policy);
   commands.emplace_back(sub, [o] { return run_scene(*o); });
 }
 

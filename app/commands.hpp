@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "solver/core/thread_governor.hpp"
+
 namespace splat::app {
 
 using CommandTable = std::vector<std::pair<CLI::App*, std::function<int()>>>;
@@ -25,6 +27,9 @@ void register_window(CLI::App& app, CommandTable& commands);
 // Throws std::invalid_argument naming --threads unless 0 <= threads <= the
 // cores of this machine (splat::max_threads()).
 void check_threads_option(int threads);
+
+// --thread-policy adaptive|fixed (solver/core/thread_governor.hpp).
+void add_thread_policy_option(CLI::App& sub, ThreadPolicy& policy);
 
 inline void register_all(CLI::App& app, CommandTable& commands) {
   register_materials(app, commands);

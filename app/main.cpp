@@ -78,7 +78,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the message; --help is not an error, anything else is
+    // bad input (exit 2, as for a bad scene).
+    return app.exit(e) == 0 ? 0 : 2;
   }
   if (show_version) {
     std::printf("splat %s (commit %s)\n", std::string(splat::version()).c_str(),

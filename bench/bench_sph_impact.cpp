@@ -19,7 +19,11 @@
 // meaningful for the first run in the process, the 1-thread one).
 // Each thread count also runs beside a busy process (one spinning core,
 // forked and killed by the benchmark): there two threads must not be slower
-// than one (issue 28; passive OpenMP waiting, solver/common/omp_wait.hpp).
+// than one (issue 28; passive OpenMP waiting, solver/common/omp_wait.hpp, and
+// the adaptive thread policy, solver/core/thread_governor.hpp). Two-thread
+// runs are timed with the fixed policy (every step on both threads) and the
+// adaptive one (splat's default); steps_on_one counts the steps the governor
+// ran on one thread.
 #include <benchmark/benchmark.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -106,12 +110,14 @@ struct BusyNeighbour {
 void BM_sph_al_al_impact(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   const BusyNeighbour neighbour(state.range(1) != 0);
+  const ThreadPolicy policy = state.range(2) != 0 ? ThreadPolicy::adaptive : ThreadPolicy::fixed;
   const double rss0 = proc_status_bytes("VmRSS:");
   const LoadedScene loaded = read_scene(impact_scene());
-  double particles = 0.0, steps = 0.0, peak = 0.0, cpu = 0.0;
+  double particles = 0.0, steps = 0.0, peak = 0.0, cpu = 0.0, on_one = 0.0;
   for (auto _ : state) {
     SimulationOptions options;
     options.threads = threads;
+    options.thread_policy = policy;
     Simulation sim(loaded.scene, loaded.resolved, options);
     particles = static_cast<double>(sim.nodes().size());
     const auto t0 = std::chrono::steady_clock::now();
@@ -122,6 +128,7 @@ void BM_sph_al_al_impact(benchmark::State& state) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     state.SetIterationTime(seconds);
     steps = static_cast<double>(s.steps);
+    on_one += static_cast<double>(s.threads.steps_on_one);
     peak = proc_status_bytes("VmHWM:");
     if (s.outcome != RunOutcome::timed_out) state.SkipWithError(s.reason.c_str());
   }
@@ -134,17 +141,20 @@ void BM_sph_al_al_impact(benchmark::State& state) {
       cpu * 1e9 / (static_cast<double>(state.iterations()) * particles * steps);
   state.counters["particles"] = particles;
   state.counters["steps"] = steps;
+  state.counters["steps_on_one"] = on_one / static_cast<double>(state.iterations());
   state.counters["peak_bytes_per_particle"] = (peak - rss0) / particles;
 }
 
-// Arguments: threads, and 1 for a busy process beside the run (two threads
-// must not be slower than one there: passive OpenMP waiting).
+// Arguments: threads, 1 for a busy process beside the run (two threads must
+// not be slower than one there), and 1 for the adaptive thread policy.
 BENCHMARK(BM_sph_al_al_impact)
-    ->ArgNames({"threads", "busy_neighbour"})
-    ->Args({1, 0})
-    ->Args({2, 0})
-    ->Args({1, 1})
-    ->Args({2, 1})
+    ->ArgNames({"threads", "busy_neighbour", "adaptive"})
+    ->Args({1, 0, 0})
+    ->Args({2, 0, 0})
+    ->Args({2, 0, 1})
+    ->Args({1, 1, 0})
+    ->Args({2, 1, 0})
+    ->Args({2, 1, 1})
     ->UseManualTime()
     ->Iterations(2)
     ->Unit(benchmark::kMillisecond);

@@ -53,7 +53,11 @@ nlohmann::json to_json(const RunSummary& s) {
   j["steps"] = s.steps;
   j["end_time"] = s.end_time;
   j["wall_seconds"] = s.wall_seconds;
-  j["threads"] = s.threads;
+  j["threads"] = s.threads.team;
+  j["thread_use"] = {{"policy", to_string(s.threads.policy)},
+                     {"steps_on_team", s.threads.steps_on_team},
+                     {"steps_on_one", s.threads.steps_on_one},
+                     {"switches", s.threads.switches}};
   const EnergyBudget& e = s.energy;
   j["energy"] = {
       {"initial_total", e.initial_total}, {"kinetic", e.kinetic},

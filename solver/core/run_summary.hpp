@@ -9,6 +9,7 @@
 
 #include "solver/common/types.hpp"
 #include "solver/core/stop_reason.hpp"
+#include "solver/core/thread_governor.hpp"
 #include "solver/scene/fidelity.hpp"
 
 namespace splat {
@@ -168,7 +169,7 @@ struct RunSummary {
   long long steps = 0;
   double end_time = 0.0;      // s
   double wall_seconds = 0.0;  // s
-  int threads = 1;
+  ThreadUse threads;          // the team and the steps run on it and on one thread
   EnergyBudget energy;
   std::vector<BodySummary> bodies;
   std::vector<InterfaceSummary> interfaces;

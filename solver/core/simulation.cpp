@@ -412,15 +412,59 @@ std::optional<std::pair<RunOutcome, std::string>> Simulation::Impl::checks(
   return std::nullopt;
 }
 
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// The OpenMP team of a run: options.threads, or OpenMP's default; the
+// calling thread's setting is put back when the run ends, whatever count the
+// governor left in force.
+class ThreadTeam {
+ public:
+  explicit ThreadTeam(int asked) {
+#ifdef _OPENMP
+    before_ = omp_get_max_threads();
+    if (asked > 0) omp_set_num_threads(asked);
+    team_ = omp_get_max_threads();
+#else
+    (void)asked;
+#endif
+  }
+  ~ThreadTeam() {
+    use(before_);
+  }
+  ThreadTeam(const ThreadTeam&) = delete;
+  ThreadTeam& operator=(const ThreadTeam&) = delete;
+  int size() const {
+    return team_;
+  }
+  void use(int threads) {
+#ifdef _OPENMP
+    if (threads != in_force_) omp_set_num_threads(threads);
+#endif
+    in_force_ = threads;
+  }
+
+ private:
+  int before_ = 1;
+  int team_ = 1;
+  int in_force_ = 0;
+};
+
+}  // namespace
+
 RunSummary Simulation::run() {
   Impl& s = *impl_;
   RunSummary summary;
   summary.scene = s.scene.name;
-  const auto start = std::chrono::steady_clock::now();
-#ifdef _OPENMP
-  if (s.options.threads > 0) omp_set_num_threads(s.options.threads);
-  summary.threads = omp_get_max_threads();
-#endif
+  const auto start = Clock::now();
+  ThreadTeam team(s.options.threads);
+  ThreadGovernor governor(team.size(), s.options.thread_policy, s.options.thread_governor);
+  team.use(governor.threads());
   try {
     s.open_output();
     // Initial state: no force yet; the dashpots of the absorbing faces at x_0.
@@ -444,6 +488,7 @@ RunSummary Simulation::run() {
     const double end_time = s.scene.time.end_time;
     bool stopped = false;
     while (!stopped) {
+      const auto step_start = Clock::now();
       if (s.time + s.dt_half > end_time) s.dt_half = end_time - s.time;
       s.update_velocities(s.step == 0);
       s.predict_positions();
@@ -482,6 +527,7 @@ RunSummary Simulation::run() {
         summary.reason = "reached the end time";
         stopped = true;
       }
+      team.use(governor.step_done(seconds_since(step_start)));  // output not timed
       if (stopped || s.time >= s.next_history_time) s.write_history();
       // A run that stops before its last requested snapshot still leaves its
       // final state in the file.
@@ -498,8 +544,7 @@ RunSummary Simulation::run() {
     if (s.impact) s.impact->finish(summary, s.model, s.verdict);
     if (s.file) {
       if (summary.impact) {
-        summary.wall_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        summary.wall_seconds = seconds_since(start);
         write_impact_attributes(*s.file, summary);
       }
       s.file->set_attribute("outcome", to_string(summary.outcome));
@@ -516,8 +561,8 @@ RunSummary Simulation::run() {
     summary.stop_reason = StopReason::error;
     summary.reason = e.what();
   }
-  summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.threads = governor.use();
+  summary.wall_seconds = seconds_since(start);
   return summary;
 }
 

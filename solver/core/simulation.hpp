@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "solver/core/run_summary.hpp"
+#include "solver/core/thread_governor.hpp"
 #include "solver/fe/fe_body.hpp"
 #include "solver/scene/scene.hpp"
 #include "solver/sph/sph_body.hpp"
@@ -30,8 +31,10 @@
 namespace splat {
 
 struct SimulationOptions {
-  std::filesystem::path output_dir;  // empty: no result file
-  int threads = 0;                   // 0: OpenMP default
+  std::filesystem::path output_dir;                     // empty: no result file
+  int threads = 0;                                      // the team; 0: OpenMP default
+  ThreadPolicy thread_policy = ThreadPolicy::adaptive;  // thread_governor.hpp
+  ThreadGovernorSettings thread_governor;
   const std::atomic<bool>* cancel = nullptr;
   bool quiet = true;  // no progress lines on stderr
 };

@@ -314,7 +314,6 @@ RunSummary run_two_mass(const Scene& scene, const nlohmann::json& resolved,
   const auto start = std::chrono::steady_clock::now();
   RunSummary summary;
   summary.scene = scene.name;
-  summary.threads = 1;
   try {
     std::unique_ptr<ResultFile> file;
     const std::vector<std::pair<std::string, std::string>> columns = {

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -167,6 +168,29 @@ TEST(cli, run_threads_are_capped_by_the_machine) {
   EXPECT_EQ(o.code, 2) << o.stdout_text;
   EXPECT_NE(o.stdout_text.find("--threads"), std::string::npos) << o.stdout_text;
   EXPECT_NE(o.stdout_text.find("cores of this machine"), std::string::npos) << o.stdout_text;
+  std::filesystem::remove_all(out);
+}
+
+// A command-line value CLI11 refuses is bad input like any other: exit 2,
+// the option and its choices named; the summary says how the steps used the
+// threads.
+TEST(cli, thread_policy_is_checked_and_reported) {
+  const std::string scene =
+      std::string(SPLAT_SOURCE_DIR) + "/scenes/elastic_sphere_bounce_axisym.json";
+  const auto out = std::filesystem::temp_directory_path() / "splat_cli_thread_policy";
+  auto o = run_splat("run " + scene + " --out " + out.string() + " --thread-policy sometimes");
+  EXPECT_EQ(o.code, 2) << o.stdout_text;
+  EXPECT_NE(o.stdout_text.find("--thread-policy: sometimes not in {adaptive,fixed}"),
+            std::string::npos)
+      << o.stdout_text;
+  o = run_splat(
+      "run " + scene + " --out " + out.string() + " --threads 1 --thread-policy fixed --json",
+      false);
+  ASSERT_EQ(o.code, 0) << o.stdout_text;
+  const auto doc = nlohmann::json::parse(o.stdout_text);
+  EXPECT_EQ(doc["thread_use"]["policy"], "fixed");
+  EXPECT_EQ(doc["thread_use"]["steps_on_team"], doc["steps"]);
+  EXPECT_EQ(doc["thread_use"]["steps_on_one"], 0);
   std::filesystem::remove_all(out);
 }
 

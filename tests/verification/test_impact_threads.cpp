@@ -6,6 +6,8 @@
 //    absorbing layers), 60 steps.
 //  - The quarter 3D FE Al/Al impact (hexahedra, node-on-face Lagrange
 //    contact, absorbing faces), 400 steps.
+// The quarter FE impact also runs with the thread count changed every few
+// steps (adaptive policy, thread_governor.hpp), as a loaded machine makes it.
 // The scenes are big enough for every parallel loop of the step to run in
 // parallel (node loops and element energy sums from 4,096, the contact
 // search from 128 slave nodes and 512 faces, absorbing faces from 256 and SPH
@@ -24,11 +26,26 @@
 namespace splat {
 namespace {
 
-RunSummary run_on(const char* scene, const std::vector<std::string>& sets, int threads) {
+// A governor that changes the thread count every few steps: windows of one
+// step, one window between probes, and any gain taking over.
+ThreadGovernorSettings restless() {
+  ThreadGovernorSettings g;
+  g.window_seconds = 0.0;
+  g.window_steps = 1;
+  g.min_settle_windows = 1;
+  g.max_settle_windows = 2;
+  g.margin = 0.0;
+  return g;
+}
+
+RunSummary run_on(const char* scene, const std::vector<std::string>& sets, int threads,
+                  ThreadPolicy policy = ThreadPolicy::fixed) {
   const LoadedScene loaded =
       load_scene(std::filesystem::path(SPLAT_SOURCE_DIR) / "scenes" / scene, sets);
   SimulationOptions options;
   options.threads = threads;
+  options.thread_policy = policy;
+  options.thread_governor = restless();
   options.quiet = true;
   Simulation sim(loaded.scene, loaded.resolved, options);
   return sim.run();
@@ -37,8 +54,8 @@ RunSummary run_on(const char* scene, const std::vector<std::string>& sets, int t
 void expect_same_bits(const RunSummary& a, const RunSummary& b, long long steps) {
   ASSERT_EQ(a.steps, steps) << a.reason;
   ASSERT_EQ(b.steps, steps) << b.reason;
-  EXPECT_EQ(a.threads, 1);
-  EXPECT_EQ(b.threads, 2);
+  EXPECT_EQ(a.threads.team, 1);
+  EXPECT_EQ(b.threads.team, 2);
   // The particle is in contact and the run has moved energy around.
   EXPECT_LT(a.energy.contact_work, 0.0);
   EXPECT_GT(a.energy.internal, 0.0);
@@ -76,6 +93,12 @@ TEST(impact_threads, fe_quarter_impact_same_bits_on_one_and_two_threads) {
   const RunSummary a = run_on("impact_al_al.json", sets, 1);
   expect_same_bits(a, run_on("impact_al_al.json", sets, 2), 400);
   EXPECT_GT(a.energy.absorbed, 0.0) << "the wave has reached the absorbing faces";
+  // The adaptive policy changing between one and two threads every few
+  // steps: the same bits again.
+  const RunSummary c = run_on("impact_al_al.json", sets, 2, ThreadPolicy::adaptive);
+  expect_same_bits(a, c, 400);
+  EXPECT_GT(c.threads.steps_on_one, 100);
+  EXPECT_GT(c.threads.steps_on_team, 100);
 #else
   GTEST_SKIP() << "built without OpenMP";
 #endif
