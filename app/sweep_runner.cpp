@@ -48,7 +48,7 @@ class ProgressPrinter {
                    std::string(static_cast<std::size_t>(filled), '#').c_str(),
                    std::string(static_cast<std::size_t>(k_width - filled), ' ').c_str(), done,
                    total, p.counts.running, p.counts.failed + p.counts.timed_out, p.refinement_jobs,
-                   time_left(done, total, now).c_str());
+                   time_left(p).c_str());
       std::fflush(stderr);
       drawn_ = true;
       return;
@@ -56,8 +56,7 @@ class ProgressPrinter {
     if (done == last_done_ && total == last_total_) return;
     if (done != total && now - last_line_ < std::chrono::seconds(1)) return;
     std::fprintf(stderr, "progress: %d/%d jobs finished (%d failed or timed out), round %d%s\n",
-                 done, total, p.counts.failed + p.counts.timed_out, p.round,
-                 time_left(done, total, now).c_str());
+                 done, total, p.counts.failed + p.counts.timed_out, p.round, time_left(p).c_str());
     last_done_ = done;
     last_total_ = total;
     last_line_ = now;
@@ -67,23 +66,14 @@ class ProgressPrinter {
   }
 
  private:
-  // ", about 40 s left": the mean time per job finished since the start
-  // times the jobs still queued or running (refinement may add more).
-  std::string time_left(int done, int total, std::chrono::steady_clock::time_point now) {
-    if (first_done_ < 0) {
-      first_done_ = done;
-      start_ = now;
-    }
-    const int finished_here = done - first_done_;
-    if (finished_here <= 0 || done >= total) return {};
-    const double per_job = std::chrono::duration<double>(now - start_).count() / finished_here;
-    return ", about " + std::to_string(static_cast<long long>(per_job * (total - done) + 0.5)) +
-           " s left";
+  // ", about 40 s left": the jobs queued or running, each charged what the
+  // jobs of its parameter set and resolution took (campaign/progress.hpp).
+  static std::string time_left(const campaign::Progress& p) {
+    if (!p.seconds_left || p.counts.finished() >= p.counts.total()) return {};
+    return ", about " + std::to_string(static_cast<long long>(*p.seconds_left + 0.5)) + " s left";
   }
 
   bool tty_;
-  int first_done_ = -1;
-  std::chrono::steady_clock::time_point start_{};
   bool drawn_ = false;
   int last_done_ = -1;
   int last_total_ = -1;

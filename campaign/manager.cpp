@@ -26,6 +26,7 @@
 #include "campaign/ladders.hpp"
 #include "campaign/manager_lock.hpp"
 #include "campaign/process.hpp"
+#include "campaign/progress.hpp"
 #include "campaign/slurm.hpp"
 #include "solver/common/parallel.hpp"
 
@@ -519,6 +520,9 @@ class SweepRun {
     if (!options_.on_progress) return;
     progress_.counts = store_.job_counts(cid_);
     progress_.refinement_jobs = store_.refinement_points_count(cid_);
+    const auto work = work_left(store_.parameter_set_loads(cid_), ladder_axis(spec_));
+    progress_.seconds_left =
+        work ? std::optional<double>(seconds_left(*work, workers_)) : std::nullopt;
     options_.on_progress(progress_);
   }
 

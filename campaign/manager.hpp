@@ -37,6 +37,10 @@ struct Progress {
   JobCounts counts;
   int refinement_jobs = 0;  // points refinement has added so far
   int round = 0;            // 0 = the grid, then one per refinement round
+  // s, the jobs queued or running now, estimated from those that ran, finer
+  // resolution levels charged more (campaign/progress.hpp); none before a
+  // job has finished. Refinement may add jobs.
+  std::optional<double> seconds_left;
 };
 
 struct ManagerOptions {

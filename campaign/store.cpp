@@ -765,6 +765,21 @@ int Store::refinement_points_count(std::int64_t campaign_id) {
   return static_cast<int>(s.int64(0));
 }
 
+std::vector<ParameterSetLoad> Store::parameter_set_loads(std::int64_t campaign_id) {
+  Statement s = reader().prepare(
+      "SELECT cp.params_key, MIN(cp.params), "
+      "SUM(j.state IN ('queued', 'running')), SUM(j.wall_seconds IS NOT NULL), "
+      "TOTAL(j.wall_seconds) FROM campaign_points cp JOIN jobs j ON j.hash = cp.job_hash "
+      "WHERE cp.campaign_id = ? GROUP BY cp.params_key ORDER BY cp.params_key");
+  s.bind(1, campaign_id);
+  std::vector<ParameterSetLoad> out;
+  while (s.step()) {
+    out.push_back(
+        {s.text(1), static_cast<int>(s.int64(2)), static_cast<int>(s.int64(3)), s.real(4)});
+  }
+  return out;
+}
+
 std::vector<WindowRecord> Store::windows(std::int64_t campaign_id) {
   Statement s = reader().prepare(
       "SELECT campaign_id, params_key, params, critical_velocity, maximum_velocity, window "

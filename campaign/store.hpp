@@ -125,6 +125,14 @@ struct JobCounts {
 // GROUP BY state" statement returns.
 JobCounts read_job_counts(Statement& grouped_by_state);
 
+// The jobs of one parameter set of a campaign (campaign/progress.hpp).
+struct ParameterSetLoad {
+  std::string params;         // JSON text, {axis name: value}
+  int pending = 0;            // queued or running
+  int finished = 0;           // ended with a recorded wall time
+  double wall_seconds = 0.0;  // s, sum over the finished ones
+};
+
 struct AddPointsStats {
   int points_added = 0;   // new (parameter set, velocity) points of the campaign
   int jobs_created = 0;   // new jobs
@@ -245,6 +253,7 @@ class Store {
   std::vector<PointStatus> points(std::int64_t campaign_id);
   JobCounts job_counts(std::int64_t campaign_id);
   int refinement_points_count(std::int64_t campaign_id);
+  std::vector<ParameterSetLoad> parameter_set_loads(std::int64_t campaign_id);
   std::vector<WindowRecord> windows(std::int64_t campaign_id);
 
   // Runs `work` on the writer thread inside BEGIN IMMEDIATE ... COMMIT and
