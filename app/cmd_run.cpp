@@ -157,8 +157,8 @@ void add_thread_policy_option(CLI::App& sub, ThreadPolicy& policy) {
   sub.add_option_function<std::string>(
          "--thread-policy",
          [&policy](const std::string& name) { policy = *parse<ThreadPolicy>(name); },
-         "adaptive: each step on the whole team or on one thread, whichever the run "
-         "measures faster (a loaded machine); fixed: always the whole team")
+         "adaptive: the whole team only while the run measures it more than 3 % faster "
+         "than one thread (not on a loaded machine); fixed: always the whole team")
       ->check(CLI::IsMember(names))
       ->default_str(std::string(to_string(policy)));
 }

@@ -27,7 +27,6 @@ int ThreadGovernor::step_done(double seconds) {
 }
 
 void ThreadGovernor::window_done(double cost) {
-  const bool other_faster = cost < chosen_cost_ * (1.0 - settings_.margin);
   switch (phase_) {
     case Phase::first_team:
       chosen_cost_ = cost;
@@ -35,19 +34,25 @@ void ThreadGovernor::window_done(double cost) {
       phase_ = Phase::first_one;
       return;
     case Phase::first_one:
-    case Phase::probing:
-      if (other_faster) {
-        chosen_cost_ = cost;
+    case Phase::probing: {
+      // cost is the other count's, chosen_cost_ the chosen one's.
+      const double team_cost = current_ == use_.team ? cost : chosen_cost_;
+      const double one_cost = current_ == use_.team ? chosen_cost_ : cost;
+      const int faster = team_cost < one_cost * (1.0 - settings_.margin) ? use_.team : 1;
+      const int before = phase_ == Phase::first_one ? use_.team : other();
+      if (faster != before) {
         settle_ = settings_.min_settle_windows;
         ++use_.switches;
       } else {
-        current_ = other();
         settle_ = phase_ == Phase::probing ? std::min(2 * settle_, settings_.max_settle_windows)
                                            : settings_.min_settle_windows;
       }
+      chosen_cost_ = faster == current_ ? cost : chosen_cost_;
+      current_ = faster;
       settle_left_ = settle_;
       phase_ = Phase::settled;
       return;
+    }
     case Phase::settled:
       chosen_cost_ = cost;
       if (--settle_left_ > 0) return;

@@ -9,8 +9,11 @@
 //   - the run starts with the team; one window at the team, one at one
 //     thread, then the faster count runs for `settle` windows;
 //   - after those, one probe window at the other count compares with the
-//     last window at the chosen count: the other count takes over only when
-//     it is faster by more than `margin` (noise does not flip the choice);
+//     last window at the chosen count;
+//   - the team is chosen only when it is faster than one thread by more
+//     than `margin`: a second thread must earn its keep, a near tie (two
+//     threads beside a busy process) goes to one thread, which also leaves
+//     the other core to the neighbour, and noise does not flip the choice;
 //   - a probe that confirms the choice doubles `settle` (up to
 //     `max_settle_windows`), one that changes it starts again from
 //     `min_settle_windows`: a steady machine is probed rarely, a changing
@@ -26,7 +29,7 @@
 namespace splat {
 
 enum class ThreadPolicy {
-  adaptive,  // the governor picks one thread or the whole team, step by step
+  adaptive,  // the governor picks one thread or the whole team as it measures
   fixed,     // the whole team for every step
 };
 
@@ -44,7 +47,7 @@ struct ThreadGovernorSettings {
   long long window_steps = 3;     // the fewest steps in a window
   int min_settle_windows = 4;
   int max_settle_windows = 64;
-  double margin = 0.03;  // relative speed the other count must gain to take over
+  double margin = 0.03;  // relative speed the team must gain over one thread
 };
 
 // Steps run with the team and with one thread.
