@@ -126,6 +126,70 @@ SceneResolver library_scene_resolver() {
   };
 }
 
+namespace {
+
+// The base scene: inline, or a file relative to the campaign's folder (its
+// own folder then resolves the scene's relative paths).
+void read_base_scene(const json& base, const std::filesystem::path& base_dir, CampaignSpec& s,
+                     std::vector<SchemaViolation>& problems) {
+  s.base_dir = base_dir;
+  if (!base.is_string()) {
+    s.base_scene = base;
+    return;
+  }
+  std::filesystem::path p = base.get<std::string>();
+  if (p.is_relative()) p = base_dir / p;
+  try {
+    s.base_scene = read_json_file(p);
+    s.base_dir = p.parent_path();
+  } catch (const InputError& e) {
+    for (const SchemaViolation& v : e.violations()) problems.push_back({"/base_scene", v.message});
+  }
+}
+
+// Each pointer must name a field the base scene can hold: its parent exists.
+void check_pointer_parents(const CampaignSpec& s, std::vector<SchemaViolation>& problems) {
+  if (!s.base_scene.is_object()) return;
+  auto check_parent = [&](const std::string& pointer, const std::string& where) {
+    if (pointer.empty()) return;
+    const json::json_pointer p(pointer);
+    if (!s.base_scene.contains(p.parent_pointer())) {
+      problems.push_back({where + "/pointer", "the base scene has no '" +
+                                                  p.parent_pointer().to_string() + "' to hold '" +
+                                                  pointer + "'"});
+    }
+  };
+  check_parent(s.velocity_pointer, "/velocity");
+  std::size_t field = 0;
+  for (const ParameterAxis& a : s.axes) {
+    const std::string where = a.is_field ? "/fields/" + std::to_string(field++) : "/" + a.name;
+    check_parent(a.pointer, where);
+  }
+}
+
+void read_refinement(const json& doc, CampaignSpec& s, std::vector<SchemaViolation>& problems) {
+  if (!doc.contains("refinement")) return;
+  const json& r = doc.at("refinement");
+  s.refinement = RefinementOptions{r.at("tolerance").get<double>(), r.value("max_extra_jobs", 100),
+                                   r.value("guard_band", 0.0), r.value("coarse_to_fine", false),
+                                   r.value("points_per_round", 1)};
+  if (s.refinement->coarse_to_fine && !ladder_axis(s)) {
+    problems.push_back({"/refinement/coarse_to_fine", "needs a `fields` axis on " +
+                                                          k_resolution_pointers.front() +
+                                                          " with two or more numeric values"});
+  }
+}
+
+void read_job_options(const json& doc, CampaignSpec& s) {
+  if (!doc.contains("job")) return;
+  const json& j = doc.at("job");
+  s.job.time_limit = j.value("time_limit", 3600.0);
+  s.job.retries = j.value("retries", 1);
+  s.job.threads = j.value("threads", 1);
+}
+
+}  // namespace
+
 CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_dir) {
   validate_or_throw("campaign", doc);
   CampaignSpec s;
@@ -134,22 +198,7 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
   if (doc.contains("tags")) s.tags = doc.at("tags").get<std::vector<std::string>>();
 
   std::vector<SchemaViolation> problems;
-  const json& base = doc.at("base_scene");
-  s.base_dir = base_dir;
-  if (base.is_string()) {
-    std::filesystem::path p = base.get<std::string>();
-    if (p.is_relative()) p = base_dir / p;
-    try {
-      s.base_scene = read_json_file(p);
-      s.base_dir = p.parent_path();
-    } catch (const InputError& e) {
-      for (const SchemaViolation& v : e.violations()) {
-        problems.push_back({"/base_scene", v.message});
-      }
-    }
-  } else {
-    s.base_scene = base;
-  }
+  read_base_scene(doc.at("base_scene"), base_dir, s, problems);
   const bool two_mass = s.base_scene.is_object() && s.base_scene.contains("two_mass");
   // A particle_impact scene (not yet expanded: no bodies) ends stick or
   // rebound like a two-mass one, so the windows classify it the same way.
@@ -206,42 +255,9 @@ CampaignSpec read_campaign(const json& doc, const std::filesystem::path& base_di
       s.axes.push_back(std::move(axis));
     }
   }
-  // Each pointer must name a field the base scene can hold: its parent exists.
-  if (s.base_scene.is_object()) {
-    auto check_parent = [&](const std::string& pointer, const std::string& where) {
-      if (pointer.empty()) return;
-      const json::json_pointer p(pointer);
-      if (!s.base_scene.contains(p.parent_pointer())) {
-        problems.push_back({where + "/pointer", "the base scene has no '" +
-                                                    p.parent_pointer().to_string() + "' to hold '" +
-                                                    pointer + "'"});
-      }
-    };
-    check_parent(s.velocity_pointer, "/velocity");
-    std::size_t field = 0;
-    for (const ParameterAxis& a : s.axes) {
-      const std::string where = a.is_field ? "/fields/" + std::to_string(field++) : "/" + a.name;
-      check_parent(a.pointer, where);
-    }
-  }
-
-  if (doc.contains("refinement")) {
-    const json& r = doc.at("refinement");
-    s.refinement = RefinementOptions{
-        r.at("tolerance").get<double>(), r.value("max_extra_jobs", 100), r.value("guard_band", 0.0),
-        r.value("coarse_to_fine", false), r.value("points_per_round", 1)};
-    if (s.refinement->coarse_to_fine && !ladder_axis(s)) {
-      problems.push_back({"/refinement/coarse_to_fine", "needs a `fields` axis on " +
-                                                            k_resolution_pointers.front() +
-                                                            " with two or more numeric values"});
-    }
-  }
-  if (doc.contains("job")) {
-    const json& j = doc.at("job");
-    s.job.time_limit = j.value("time_limit", 3600.0);
-    s.job.retries = j.value("retries", 1);
-    s.job.threads = j.value("threads", 1);
-  }
+  check_pointer_parents(s, problems);
+  read_refinement(doc, s, problems);
+  read_job_options(doc, s);
   s.priority = doc.value("priority", 0);
   s.executor =
       splat::parse<ExecutorKind>(doc.value("executor", "local")).value_or(ExecutorKind::local);

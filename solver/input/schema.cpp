@@ -631,25 +631,96 @@ class Explainer {
     return "must have at most " + n(hi.value_or(0.0)) + " " + noun;
   }
 
+  void explain_type(const json& s, const json* v, const std::string& pointer) {
+    const auto t = s.find("type");
+    if (v == nullptr || t == s.end() || type_keyword_matches(*t, *v)) return;
+    std::string want;
+    if (t->is_string()) {
+      want = with_article(t->get<std::string>());
+    } else {
+      for (std::size_t i = 0; i < t->size(); ++i) {
+        if (i > 0) want += " or ";
+        want += with_article((*t)[i].get<std::string>());
+      }
+    }
+    emit(pointer, "must be " + want + ", got " + v->type_name());
+  }
+
+  void explain_length(const json& s, const json* v, const std::string& pointer) {
+    if (v == nullptr || !v->is_string()) return;
+    const auto len = static_cast<double>(utf8_length(v->get<std::string>()));
+    const auto lo = number_of(s, "minLength");
+    const auto hi = number_of(s, "maxLength");
+    if (lo && len < *lo) {
+      emit(pointer,
+           *lo == 1.0 ? "must not be empty" : count_words(s, "minLength", "", "characters"));
+    }
+    if (hi && len > *hi) emit(pointer, count_words(s, "", "maxLength", "characters"));
+  }
+
+  void explain_item_count(const json& s, const json* v, const std::string& pointer) {
+    if (v == nullptr || !v->is_array()) return;
+    const auto n = static_cast<double>(v->size());
+    const auto lo = number_of(s, "minItems");
+    const auto hi = number_of(s, "maxItems");
+    if ((lo && n < *lo) || (hi && n > *hi)) {
+      emit(pointer,
+           count_words(s, "minItems", "maxItems", "items") + ", got " + std::to_string(v->size()));
+    }
+  }
+
+  void explain_too_many_items(const json& s, const json* v, const std::string& pointer) {
+    const auto items = s.find("items");
+    const auto add = s.find("additionalItems");
+    if (v == nullptr || items == s.end() || !items->is_array() || add == s.end() ||
+        !add->is_boolean() || add->get<bool>() || v->size() <= items->size()) {
+      return;
+    }
+    emit(pointer, "must have at most " + std::to_string(items->size()) + " items, got " +
+                      std::to_string(v->size()));
+  }
+
+  void explain_property_count(const json& s, const json* v, const std::string& pointer) {
+    if (v == nullptr || !v->is_object()) return;
+    const auto n = static_cast<double>(v->size());
+    const auto lo = number_of(s, "minProperties");
+    const auto hi = number_of(s, "maxProperties");
+    if ((lo && n < *lo) || (hi && n > *hi)) {
+      emit(pointer, count_words(s, "minProperties", "maxProperties", "fields"));
+    }
+  }
+
+  void explain_required(const json& s, const json* v, const std::string& pointer) {
+    const auto r = s.find("required");
+    if (v == nullptr || !v->is_object() || r == s.end() || !r->is_array()) return;
+    for (const json& name : *r) {
+      if (name.is_string() && !v->contains(name.get<std::string>())) {
+        emit(join_pointer(pointer, name.get<std::string>()), "required field is missing");
+      }
+    }
+  }
+
+  void explain_dependency(const json& s, const json* v, const std::string& pointer) {
+    const auto d = s.find("dependencies");
+    if (v == nullptr || !v->is_object() || d == s.end() || !d->is_object()) return;
+    for (const auto& [key, needs] : d->items()) {
+      if (!v->contains(key) || !needs.is_array()) continue;
+      for (const json& name : needs) {
+        if (name.is_string() && !v->contains(name.get<std::string>())) {
+          emit(join_pointer(pointer, name.get<std::string>()),
+               "required field is missing (needed with '" + key + "')");
+        }
+      }
+    }
+  }
+
   // Re-check rule `kind` of node `s` on value `v` and emit what is broken.
   void explain(Failure kind, const json& s, const json* v, const std::string& pointer) {
     if (!s.is_object()) return;
     switch (kind) {
-      case Failure::type: {
-        const auto t = s.find("type");
-        if (v == nullptr || t == s.end() || type_keyword_matches(*t, *v)) return;
-        std::string want;
-        if (t->is_string()) {
-          want = with_article(t->get<std::string>());
-        } else {
-          for (std::size_t i = 0; i < t->size(); ++i) {
-            if (i > 0) want += " or ";
-            want += with_article((*t)[i].get<std::string>());
-          }
-        }
-        emit(pointer, "must be " + want + ", got " + v->type_name());
+      case Failure::type:
+        explain_type(s, v, pointer);
         return;
-      }
       case Failure::enumeration: {
         const auto e = s.find("enum");
         if (v == nullptr || e == s.end() || !e->is_array() ||
@@ -675,18 +746,9 @@ class Explainer {
         }
         return;
       case Failure::min_length:
-      case Failure::max_length: {
-        if (v == nullptr || !v->is_string()) return;
-        const auto len = static_cast<double>(utf8_length(v->get<std::string>()));
-        const auto lo = number_of(s, "minLength");
-        const auto hi = number_of(s, "maxLength");
-        if (lo && len < *lo) {
-          emit(pointer,
-               *lo == 1.0 ? "must not be empty" : count_words(s, "minLength", "", "characters"));
-        }
-        if (hi && len > *hi) emit(pointer, count_words(s, "", "maxLength", "characters"));
+      case Failure::max_length:
+        explain_length(s, v, pointer);
         return;
-      }
       case Failure::pattern: {
         const auto p = s.find("pattern");
         if (v == nullptr || !v->is_string() || p == s.end() || !p->is_string() ||
@@ -696,51 +758,21 @@ class Explainer {
         emit(pointer, "must match the pattern " + p->dump());
         return;
       }
-      case Failure::item_count: {
-        if (v == nullptr || !v->is_array()) return;
-        const auto n = static_cast<double>(v->size());
-        const auto lo = number_of(s, "minItems");
-        const auto hi = number_of(s, "maxItems");
-        if ((lo && n < *lo) || (hi && n > *hi)) {
-          emit(pointer, count_words(s, "minItems", "maxItems", "items") + ", got " +
-                            std::to_string(v->size()));
-        }
+      case Failure::item_count:
+        explain_item_count(s, v, pointer);
         return;
-      }
-      case Failure::too_many_items: {
-        const auto items = s.find("items");
-        const auto add = s.find("additionalItems");
-        if (v == nullptr || items == s.end() || !items->is_array() || add == s.end() ||
-            !add->is_boolean() || add->get<bool>() || v->size() <= items->size()) {
-          return;
-        }
-        emit(pointer, "must have at most " + std::to_string(items->size()) + " items, got " +
-                          std::to_string(v->size()));
+      case Failure::too_many_items:
+        explain_too_many_items(s, v, pointer);
         return;
-      }
       case Failure::unique_items:
         if (s.value("uniqueItems", false)) emit(pointer, "items must all be different");
         return;
-      case Failure::property_count: {
-        if (v == nullptr || !v->is_object()) return;
-        const auto n = static_cast<double>(v->size());
-        const auto lo = number_of(s, "minProperties");
-        const auto hi = number_of(s, "maxProperties");
-        if ((lo && n < *lo) || (hi && n > *hi)) {
-          emit(pointer, count_words(s, "minProperties", "maxProperties", "fields"));
-        }
+      case Failure::property_count:
+        explain_property_count(s, v, pointer);
         return;
-      }
-      case Failure::required: {
-        const auto r = s.find("required");
-        if (v == nullptr || !v->is_object() || r == s.end() || !r->is_array()) return;
-        for (const json& name : *r) {
-          if (name.is_string() && !v->contains(name.get<std::string>())) {
-            emit(join_pointer(pointer, name.get<std::string>()), "required field is missing");
-          }
-        }
+      case Failure::required:
+        explain_required(s, v, pointer);
         return;
-      }
       case Failure::unknown_field:
         if (v == nullptr) return;
         for (const std::string& key : unknown_fields(s, *v)) {
@@ -755,20 +787,9 @@ class Explainer {
       case Failure::negation:
         if (s.contains("not")) emit(pointer, "must not match the schema given under 'not'");
         return;
-      case Failure::dependency: {
-        const auto d = s.find("dependencies");
-        if (v == nullptr || !v->is_object() || d == s.end() || !d->is_object()) return;
-        for (const auto& [key, needs] : d->items()) {
-          if (!v->contains(key) || !needs.is_array()) continue;
-          for (const json& name : needs) {
-            if (name.is_string() && !v->contains(name.get<std::string>())) {
-              emit(join_pointer(pointer, name.get<std::string>()),
-                   "required field is missing (needed with '" + key + "')");
-            }
-          }
-        }
+      case Failure::dependency:
+        explain_dependency(s, v, pointer);
         return;
-      }
       case Failure::format:
         if (const auto f = s.find("format"); f != s.end() && f->is_string()) {
           emit(pointer, "must be a valid " + f->get<std::string>());

@@ -665,6 +665,122 @@ struct ResultFile::Impl {
     }
   }
 
+  // Each body's snapshot in `given`, by body order; throws on an unknown
+  // body or one given twice.
+  std::vector<const BodySnapshot*> snapshots_by_body(std::span<const BodySnapshot> given,
+                                                     const std::string& where) const {
+    std::vector<const BodySnapshot*> by_body(bodies.size(), nullptr);
+    for (const BodySnapshot& snapshot : given) {
+      const auto it = std::find_if(bodies.begin(), bodies.end(),
+                                   [&](const BodyTopology& b) { return b.name == snapshot.body; });
+      if (it == bodies.end()) {
+        throw std::invalid_argument(where + "unknown body " + in_quotes(snapshot.body));
+      }
+      const std::size_t b = static_cast<std::size_t>(it - bodies.begin());
+      if (by_body[b] != nullptr) {
+        throw std::invalid_argument(where + "body " + in_quotes(snapshot.body) + " given twice");
+      }
+      by_body[b] = &snapshot;
+    }
+    return by_body;
+  }
+
+  // Throws unless `snapshot` (null: missing) fits body b's topology.
+  void check_body_snapshot(std::size_t b, const BodySnapshot* snapshot,
+                           const std::string& where) const {
+    const BodyTopology& body = bodies[b];
+    const std::string at = where + "body " + in_quotes(body.name) + ": ";
+    if (snapshot == nullptr) throw std::invalid_argument(at + "missing");
+    const std::size_t dim = static_cast<std::size_t>(body.dimension);
+    if (snapshot->coordinates.size() != body.num_nodes * dim) {
+      throw std::invalid_argument(at + "coordinates have " +
+                                  std::to_string(snapshot->coordinates.size()) +
+                                  " values, expected " + std::to_string(body.num_nodes * dim));
+    }
+    std::set<std::string> names;
+    for (const FieldView& field : snapshot->fields) {
+      require_plain_name(field.name, "field");
+      if (field.name == "coordinates" || field.name == "active" || field.name == "eroded") {
+        throw std::invalid_argument(at + "field name " + in_quotes(field.name) + " is reserved");
+      }
+      if (!names.insert(field.name).second) {
+        throw std::invalid_argument(at + "field " + in_quotes(field.name) + " given twice");
+      }
+      if (!supported_components(field.components)) {
+        throw std::invalid_argument(at + "field " + in_quotes(field.name) + " has " +
+                                    std::to_string(field.components) +
+                                    " components; 1, 2, 3, 6 or 9 are supported");
+      }
+      const std::size_t items = field.on_cells ? num_cells[b] : body.num_nodes;
+      const std::size_t expected = items * static_cast<std::size_t>(field.components);
+      if (field.values.size() != expected) {
+        throw std::invalid_argument(at + "field " + in_quotes(field.name) + " has " +
+                                    std::to_string(field.values.size()) + " values, expected " +
+                                    std::to_string(expected));
+      }
+    }
+    if (!snapshot->active_cells.empty()) {
+      if (snapshot->active_cells.size() != num_cells[b]) {
+        throw std::invalid_argument(
+            at + "active has " + std::to_string(snapshot->active_cells.size()) +
+            " values, expected one per cell (" + std::to_string(num_cells[b]) + ")");
+      }
+      for (int a : snapshot->active_cells) {
+        if (a != 0 && a != 1) throw std::invalid_argument(at + "active values must be 0 or 1");
+      }
+    }
+  }
+
+  // Writes body b's coordinates and fields under `group` (path
+  // snapshot_path) and returns the fields the .xmf names.
+  std::vector<XdmfField> write_body_snapshot(hid_t group, const std::string& snapshot_path,
+                                             std::size_t b, const BodySnapshot& snapshot) const {
+    const BodyTopology& body = bodies[b];
+    const std::string body_path = snapshot_path + "/" + body.name;
+    Handle body_group = create_group(group, body.name, h5_path, body_path);
+    {
+      const std::string path = body_path + "/coordinates";
+      Handle dataset = write_dataset(
+          body_group.get(), "coordinates", {body.num_nodes, static_cast<hsize_t>(body.dimension)},
+          H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, snapshot.coordinates.data(), h5_path, path);
+      write_text_attribute(dataset.get(), "unit", "m", h5_path, path);
+    }
+    // A point body's cells are its nodes: its fields are point data.
+    const bool points = body.kind == CellKind::point;
+    std::vector<XdmfField> fields;
+    for (const FieldView& field : snapshot.fields) {
+      const std::string path = body_path + "/" + field.name;
+      const hsize_t items = field.on_cells ? num_cells[b] : body.num_nodes;
+      const bool on_cells = field.on_cells && !points;
+      std::vector<hsize_t> dims{items};
+      if (field.components > 1) dims.push_back(static_cast<hsize_t>(field.components));
+      Handle dataset = write_dataset(body_group.get(), field.name, dims, H5T_IEEE_F64LE,
+                                     H5T_NATIVE_DOUBLE, field.values.data(), h5_path, path);
+      write_text_attribute(dataset.get(), "unit", field.unit, h5_path, path);
+      write_text_attribute(dataset.get(), "center", on_cells ? "cell" : "node", h5_path, path);
+      fields.push_back(
+          {field.name, display_name(field.name, field.unit), on_cells, field.components, false});
+    }
+    if (!snapshot.active_cells.empty()) {
+      // "active" for readers of the HDF5 file; its complement "eroded" for a
+      // threshold in ParaView (keep eroded < 0.5), which the .xmf names.
+      std::vector<int> eroded(snapshot.active_cells.size());
+      for (std::size_t c = 0; c < eroded.size(); ++c) eroded[c] = 1 - snapshot.active_cells[c];
+      const char* center = points ? "node" : "cell";
+      for (const auto& [name, values] :
+           {std::pair<const char*, const int*>{"active", snapshot.active_cells.data()},
+            std::pair<const char*, const int*>{"eroded", eroded.data()}}) {
+        const std::string path = body_path + "/" + name;
+        Handle dataset = write_dataset(body_group.get(), name, {num_cells[b]}, H5T_STD_I32LE,
+                                       H5T_NATIVE_INT, values, h5_path, path);
+        write_text_attribute(dataset.get(), "unit", "1", h5_path, path);
+        write_text_attribute(dataset.get(), "center", center, h5_path, path);
+      }
+      fields.push_back({"eroded", "eroded", !points, 1, true});
+    }
+    return fields;
+  }
+
   void require_open() const {
     if (closed) {
       throw std::logic_error("result file '" + h5_path.string() + "' is already closed");
@@ -866,63 +982,8 @@ void ResultFile::write_snapshot(double time, std::span<const BodySnapshot> bodie
     throw std::invalid_argument(where + "time " + exact_text(time) + " s is before the previous " +
                                 exact_text(m.snapshots.back().time) + " s");
   }
-  std::vector<const BodySnapshot*> by_body(m.bodies.size(), nullptr);
-  for (const BodySnapshot& snapshot : bodies) {
-    const auto it = std::find_if(m.bodies.begin(), m.bodies.end(),
-                                 [&](const BodyTopology& b) { return b.name == snapshot.body; });
-    if (it == m.bodies.end()) {
-      throw std::invalid_argument(where + "unknown body " + in_quotes(snapshot.body));
-    }
-    const std::size_t b = static_cast<std::size_t>(it - m.bodies.begin());
-    if (by_body[b] != nullptr) {
-      throw std::invalid_argument(where + "body " + in_quotes(snapshot.body) + " given twice");
-    }
-    by_body[b] = &snapshot;
-  }
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    const BodyTopology& body = m.bodies[b];
-    const BodySnapshot* snapshot = by_body[b];
-    const std::string at = where + "body " + in_quotes(body.name) + ": ";
-    if (snapshot == nullptr) throw std::invalid_argument(at + "missing");
-    const std::size_t dim = static_cast<std::size_t>(body.dimension);
-    if (snapshot->coordinates.size() != body.num_nodes * dim) {
-      throw std::invalid_argument(at + "coordinates have " +
-                                  std::to_string(snapshot->coordinates.size()) +
-                                  " values, expected " + std::to_string(body.num_nodes * dim));
-    }
-    std::set<std::string> names;
-    for (const FieldView& field : snapshot->fields) {
-      require_plain_name(field.name, "field");
-      if (field.name == "coordinates" || field.name == "active" || field.name == "eroded") {
-        throw std::invalid_argument(at + "field name " + in_quotes(field.name) + " is reserved");
-      }
-      if (!names.insert(field.name).second) {
-        throw std::invalid_argument(at + "field " + in_quotes(field.name) + " given twice");
-      }
-      if (!supported_components(field.components)) {
-        throw std::invalid_argument(at + "field " + in_quotes(field.name) + " has " +
-                                    std::to_string(field.components) +
-                                    " components; 1, 2, 3, 6 or 9 are supported");
-      }
-      const std::size_t items = field.on_cells ? m.num_cells[b] : body.num_nodes;
-      const std::size_t expected = items * static_cast<std::size_t>(field.components);
-      if (field.values.size() != expected) {
-        throw std::invalid_argument(at + "field " + in_quotes(field.name) + " has " +
-                                    std::to_string(field.values.size()) + " values, expected " +
-                                    std::to_string(expected));
-      }
-    }
-    if (!snapshot->active_cells.empty()) {
-      if (snapshot->active_cells.size() != m.num_cells[b]) {
-        throw std::invalid_argument(
-            at + "active has " + std::to_string(snapshot->active_cells.size()) +
-            " values, expected one per cell (" + std::to_string(m.num_cells[b]) + ")");
-      }
-      for (int a : snapshot->active_cells) {
-        if (a != 0 && a != 1) throw std::invalid_argument(at + "active values must be 0 or 1");
-      }
-    }
-  }
+  const std::vector<const BodySnapshot*> by_body = m.snapshots_by_body(bodies, where);
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) m.check_body_snapshot(b, by_body[b], where);
 
   const Hdf5Scope scope;
   const std::filesystem::path& file = m.h5_path;
@@ -933,51 +994,7 @@ void ResultFile::write_snapshot(double time, std::span<const BodySnapshot> bodie
   XdmfSnapshot record;
   record.time = time;
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    const BodyTopology& body = m.bodies[b];
-    const BodySnapshot& snapshot = *by_body[b];
-    const std::string body_path = snapshot_path + "/" + body.name;
-    Handle body_group = create_group(group.get(), body.name, file, body_path);
-    {
-      const std::string path = body_path + "/coordinates";
-      Handle dataset = write_dataset(
-          body_group.get(), "coordinates", {body.num_nodes, static_cast<hsize_t>(body.dimension)},
-          H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, snapshot.coordinates.data(), file, path);
-      write_text_attribute(dataset.get(), "unit", "m", file, path);
-    }
-    // A point body's cells are its nodes: its fields are point data.
-    const bool points = body.kind == CellKind::point;
-    std::vector<XdmfField> fields;
-    for (const FieldView& field : snapshot.fields) {
-      const std::string path = body_path + "/" + field.name;
-      const hsize_t items = field.on_cells ? m.num_cells[b] : body.num_nodes;
-      const bool on_cells = field.on_cells && !points;
-      std::vector<hsize_t> dims{items};
-      if (field.components > 1) dims.push_back(static_cast<hsize_t>(field.components));
-      Handle dataset = write_dataset(body_group.get(), field.name, dims, H5T_IEEE_F64LE,
-                                     H5T_NATIVE_DOUBLE, field.values.data(), file, path);
-      write_text_attribute(dataset.get(), "unit", field.unit, file, path);
-      write_text_attribute(dataset.get(), "center", on_cells ? "cell" : "node", file, path);
-      fields.push_back(
-          {field.name, display_name(field.name, field.unit), on_cells, field.components, false});
-    }
-    if (!snapshot.active_cells.empty()) {
-      // "active" for readers of the HDF5 file; its complement "eroded" for a
-      // threshold in ParaView (keep eroded < 0.5), which the .xmf names.
-      std::vector<int> eroded(snapshot.active_cells.size());
-      for (std::size_t c = 0; c < eroded.size(); ++c) eroded[c] = 1 - snapshot.active_cells[c];
-      const char* center = points ? "node" : "cell";
-      for (const auto& [name, values] :
-           {std::pair<const char*, const int*>{"active", snapshot.active_cells.data()},
-            std::pair<const char*, const int*>{"eroded", eroded.data()}}) {
-        const std::string path = body_path + "/" + name;
-        Handle dataset = write_dataset(body_group.get(), name, {m.num_cells[b]}, H5T_STD_I32LE,
-                                       H5T_NATIVE_INT, values, file, path);
-        write_text_attribute(dataset.get(), "unit", "1", file, path);
-        write_text_attribute(dataset.get(), "center", center, file, path);
-      }
-      fields.push_back({"eroded", "eroded", !points, 1, true});
-    }
-    record.body_fields.push_back(std::move(fields));
+    record.body_fields.push_back(m.write_body_snapshot(group.get(), snapshot_path, b, *by_body[b]));
   }
   m.write_pending_history();
   m.flush_file();
