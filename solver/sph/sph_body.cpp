@@ -830,14 +830,15 @@ void sph_update_reference(SphBody& b, const NodeSet& nodes) {
   b.update_pending = false;
 }
 
-SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
-  SphStepResult result;
-  const std::size_t n = b.size();
-  std::vector<BlockSums> blocks;
+namespace {
 
-  // Deformation from the reference; update the reference if due.
+// Stage 1: the deformation gradient from the reference configuration; the
+// reference is updated when due (a pending deactivation, or the largest
+// deformation past the threshold).
+void sph_deformation_stage(SphBody& b, const NodeSet& nodes, const Mirrors& mirror_table,
+                           std::vector<BlockSums>& blocks, SphStepResult& result) {
+  const std::size_t n = b.size();
   const bool mirrors = !b.planes.empty();
-  const Mirrors mirror_table(b.planes);
   const auto compute_F = [&]() {
     for_blocks(n, blocks, [&](std::size_t i, BlockSums& s) {
       if (!b.active[i]) return;
@@ -863,8 +864,13 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     result.reference_updated = true;
     result.max_deformation = compute_F();
   }
+}
 
-  // Material update and first Piola-Kirchhoff stress.
+// Stage 2: the batched material update and first Piola-Kirchhoff stress per
+// block, then the deactivation of failed particles.
+void sph_material_stage(SphBody& b, double dt, std::vector<BlockSums>& blocks,
+                        SphStepResult& result) {
+  const std::size_t n = b.size();
   const Material& mat = b.material;
   const DamageParams& dm = mat.damage;
   const bool can_fail =
@@ -939,8 +945,14 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
       b.update_pending = true;
     }
   }
+}
 
-  // Pair forces, gathered per particle.
+// Stage 3: pair forces gathered per particle, the stabilisers' power and
+// each particle's stable step.
+void sph_pair_force_stage(SphBody& b, NodeSet& nodes, const Mirrors& mirror_table,
+                          std::vector<BlockSums>& blocks, SphStepResult& result) {
+  const std::size_t n = b.size();
+  const bool mirrors = !b.planes.empty();
   const double c = b.constants.wave_speed;
   const double alpha = b.settings.visc_linear, beta = b.settings.visc_quadratic;
   const double c_hg = b.settings.hourglass_coefficient;
@@ -974,6 +986,17 @@ SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
     result.hourglass_power += s.hourglass_power;
     result.viscosity_power += s.viscosity_power;
   }
+}
+
+}  // namespace
+
+SphStepResult sph_internal_forces(SphBody& b, NodeSet& nodes, double dt) {
+  SphStepResult result;
+  std::vector<BlockSums> blocks;
+  const Mirrors mirror_table(b.planes);
+  sph_deformation_stage(b, nodes, mirror_table, blocks, result);
+  sph_material_stage(b, dt, blocks, result);
+  sph_pair_force_stage(b, nodes, mirror_table, blocks, result);
   return result;
 }
 
