@@ -53,15 +53,17 @@ std::optional<WorkLeft> work_left(const std::vector<ParameterSetLoad>& sets,
                                   const ParameterAxis* ladder) {
   int finished = 0, pending = 0;
   double wall = 0.0;
+  std::vector<json> params(sets.size());
   std::map<std::string, std::vector<Level>> families;
-  for (const ParameterSetLoad& s : sets) {
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const ParameterSetLoad& s = sets[k];
     finished += s.finished;
     pending += s.pending;
     wall += s.wall_seconds;
-    const json params = json::parse(s.params, nullptr, false);
-    const auto n = level_of(params, ladder);
+    params[k] = json::parse(s.params, nullptr, false);
+    const auto n = level_of(params[k], ladder);
     if (s.finished > 0 && n) {
-      families[family_of(params, ladder)].push_back({*n, s.wall_seconds / s.finished});
+      families[family_of(params[k], ladder)].push_back({*n, s.wall_seconds / s.finished});
     }
   }
   if (finished == 0 || pending == 0) return std::nullopt;
@@ -71,12 +73,12 @@ std::optional<WorkLeft> work_left(const std::vector<ParameterSetLoad>& sets,
   }
   const double overall = wall / finished;
   WorkLeft w;
-  for (const ParameterSetLoad& s : sets) {
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const ParameterSetLoad& s = sets[k];
     if (s.pending == 0) continue;
     double cost = overall;
-    const json params = json::parse(s.params, nullptr, false);
-    const auto n = level_of(params, ladder);
-    const auto family = n ? families.find(family_of(params, ladder)) : families.end();
+    const auto n = level_of(params[k], ladder);
+    const auto family = n ? families.find(family_of(params[k], ladder)) : families.end();
     if (s.finished > 0) {
       cost = s.wall_seconds / s.finished;
     } else if (family != families.end()) {
